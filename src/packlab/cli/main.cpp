@@ -1,0 +1,43 @@
+// packlab: generate, analyze, build and load-test sphere packings.
+// Bad input prints one line "packlab: error: ..." and exits with code 2.
+#include <fmt/format.h>
+
+#include <CLI/CLI.hpp>
+#include <cstdio>
+#include <exception>
+
+#include "packlab/cli/commands.hpp"
+#include "packlab/core/error.hpp"
+#include "packlab/io/report.hpp"
+
+int main(int argc, char** argv) {
+  CLI::App app{"packlab: random sphere packings, their microstructure and DEM load tests", "packlab"};
+  app.set_version_flag("--version", fmt::format("packlab {}", packlab::io::version()));
+  app.require_subcommand(1);
+  auto* generate = app.add_subcommand("generate", "Generate a packing");
+  generate->require_subcommand(1);
+  packlab::cli::add_generate_lattice(*generate);
+  packlab::cli::add_generate_random(*generate);
+  packlab::cli::add_info(app);
+  packlab::cli::add_convert(app);
+  packlab::cli::add_relax(app);
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::CallForHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForAllHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForVersion& e) {
+    return app.exit(e);
+  } catch (const CLI::ParseError& e) {
+    std::fprintf(stderr, "packlab: error: %s\n", e.what());
+    return 2;
+  } catch (const packlab::InputError& e) {
+    std::fprintf(stderr, "packlab: error: %s\n", e.what());
+    return 2;
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "packlab: internal error: %s\n", e.what());
+    return 1;
+  }
+  return 0;
+}

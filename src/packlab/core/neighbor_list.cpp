@@ -1,0 +1,252 @@
+#include "packlab/core/neighbor_list.hpp"
+
+#include <fmt/format.h>
+#include <omp.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "packlab/core/error.hpp"
+
+namespace packlab {
+
+namespace {
+
+struct CellGrid {
+  std::array<int, 3> count{1, 1, 1};
+  Vec3 lo, size;
+  std::array<bool, 3> periodic{};
+
+  int index(const Vec3& p) const {
+    int c[3];
+    for (int a = 0; a < 3; ++a) {
+      int k = static_cast<int>(std::floor((p[a] - lo[a]) / size[a]));
+      c[a] = std::clamp(k, 0, count[a] - 1);  // open axes: particles outside go to edge cells
+    }
+    return c[0] + count[0] * (c[1] + count[1] * c[2]);
+  }
+};
+
+CellGrid make_grid(const Box& box, const std::vector<Vec3>& position, double range) {
+  CellGrid g;
+  g.periodic = box.periodic;
+  const std::size_t n = position.size();
+  // Open axes span the particles, so an exploding packing does not pile into one edge cell.
+  for (int a = 0; a < 3; ++a) {
+    double lo = box.lo[a], extent = box.length[a];
+    if (!box.periodic[a] && n > 0) {
+      double mn = position[0][a], mx = mn;
+      for (const auto& p : position) {
+        mn = std::min(mn, p[a]);
+        mx = std::max(mx, p[a]);
+      }
+      lo = mn;
+      extent = std::max(mx - mn, range);
+    }
+    g.lo[a] = lo;
+    g.count[a] = std::max(1, static_cast<int>(std::floor(extent / range)));
+  }
+  // Keep the number of cells proportional to the particle count (sparse, huge boxes).
+  const double max_cells = 8.0 * static_cast<double>(n) + 64.0;
+  while (static_cast<double>(g.count[0]) * g.count[1] * g.count[2] > max_cells) {
+    for (int a = 0; a < 3; ++a) g.count[a] = std::max(1, g.count[a] / 2);
+  }
+  for (int a = 0; a < 3; ++a) {
+    const double extent = box.periodic[a] ? box.length[a]
+                                          : std::max(range * g.count[a], 0.0);
+    g.size[a] = extent / g.count[a];
+    if (!box.periodic[a]) g.size[a] = std::max(g.size[a], range);
+  }
+  return g;
+}
+
+}  // namespace
+
+void NeighborList::build(const Box& box, std::vector<Vec3>& position, const std::vector<double>& radius,
+                         int threads) {
+  const int n = static_cast<int>(position.size());
+  double r_max = 0.0;
+  for (double r : radius) r_max = std::max(r_max, r);
+  const double range = 2.0 * r_max + skin_;
+  for (int a = 0; a < 3; ++a)
+    if (box.periodic[a] && box.length[a] < range)
+      fail_input(fmt::format(
+          "periodic box edge along {} = {:g} m is shorter than the interaction range 2*r_max + skin = {:g} m",
+          "xyz"[a], box.length[a], range));
+  for (auto& p : position) p = box.wrap(p);
+  for (int c = 0; c < 27; ++c) offsets_[c] = box.shift_vector(image_of_code(c));
+
+  const CellGrid grid = make_grid(box, position, range);
+  const int cells = grid.count[0] * grid.count[1] * grid.count[2];
+  // Counting sort of particles into cells (stable: particles keep index order in a cell).
+  cell_start_.assign(cells + 1, 0);
+  particle_cell_.resize(n);
+  for (int i = 0; i < n; ++i) {
+    particle_cell_[i] = grid.index(position[i]);
+    ++cell_start_[particle_cell_[i] + 1];
+  }
+  for (int c = 0; c < cells; ++c) cell_start_[c + 1] += cell_start_[c];
+  cell_particles_.resize(n);
+  {
+    std::vector<int> fill(cell_start_.begin(), cell_start_.end() - 1);
+    for (int i = 0; i < n; ++i) cell_particles_[fill[particle_cell_[i]]++] = i;
+  }
+
+  // Keep the old list to map per-pair history onto the new one.
+  const std::vector<int> old_first = std::move(first_);
+  const std::vector<int> old_partner = std::move(partner_);
+  const std::vector<std::uint8_t> old_image = std::move(image_);
+
+  threads = std::max(1, std::min(threads, std::max(1, n / 256)));
+  thread_partner_.resize(threads);
+  thread_image_.resize(threads);
+  first_.assign(n + 1, 0);
+  std::vector<int> counts(n, 0);
+
+#pragma omp parallel num_threads(threads)
+  {
+    const int t = omp_get_thread_num();
+    auto& tp = thread_partner_[t];
+    auto& ti = thread_image_[t];
+    tp.clear();
+    ti.clear();
+    // Static contiguous chunks of i: concatenating the chunks in thread order gives the
+    // same list as a serial build.
+    const int begin = static_cast<int>(static_cast<long>(n) * t / threads);
+    const int end = static_cast<int>(static_cast<long>(n) * (t + 1) / threads);
+    for (int i = begin; i < end; ++i) {
+      const Vec3 pi = position[i];
+      const double ri = radius[i];
+      const int ci = particle_cell_[i];
+      const int cx = ci % grid.count[0], cy = (ci / grid.count[0]) % grid.count[1],
+                cz = ci / (grid.count[0] * grid.count[1]);
+      const std::size_t before = tp.size();
+      for (int dz = -1; dz <= 1; ++dz) {
+        int nz = cz + dz, sz = 0;
+        if (nz < 0 || nz >= grid.count[2]) {
+          if (!grid.periodic[2]) continue;
+          sz = nz < 0 ? -1 : 1;
+          nz -= sz * grid.count[2];
+        }
+        for (int dy = -1; dy <= 1; ++dy) {
+          int ny = cy + dy, sy = 0;
+          if (ny < 0 || ny >= grid.count[1]) {
+            if (!grid.periodic[1]) continue;
+            sy = ny < 0 ? -1 : 1;
+            ny -= sy * grid.count[1];
+          }
+          for (int dx = -1; dx <= 1; ++dx) {
+            int nx = cx + dx, sx = 0;
+            if (nx < 0 || nx >= grid.count[0]) {
+              if (!grid.periodic[0]) continue;
+              sx = nx < 0 ? -1 : 1;
+              nx -= sx * grid.count[0];
+            }
+            // With fewer than three cells on an axis the same cell is visited with
+            // different shifts: each visit is a distinct periodic image.
+            const int code = image_code(sx, sy, sz);
+            const Vec3 offset = offsets_[code];
+            const int cell = nx + grid.count[0] * (ny + grid.count[1] * nz);
+            for (int k = cell_start_[cell]; k < cell_start_[cell + 1]; ++k) {
+              const int j = cell_particles_[k];
+              if (j < i || (j == i && code <= unshifted_image)) continue;
+              const Vec3 d = position[j] + offset - pi;
+              const double cut = ri + radius[j] + skin_;
+              if (norm2(d) < cut * cut) {
+                tp.push_back(j);
+                ti.push_back(static_cast<std::uint8_t>(code));
+              }
+            }
+          }
+        }
+      }
+      // Sort each particle's partners (insertion sort: a dozen entries, no allocation) so
+      // the list does not depend on the cell grid and old pairs can be matched to new ones.
+      const std::size_t count = tp.size() - before;
+      for (std::size_t a = before + 1; a < tp.size(); ++a) {
+        const int pj = tp[a];
+        const std::uint8_t pc = ti[a];
+        std::size_t b = a;
+        for (; b > before && (tp[b - 1] > pj || (tp[b - 1] == pj && ti[b - 1] > pc)); --b) {
+          tp[b] = tp[b - 1];
+          ti[b] = ti[b - 1];
+        }
+        tp[b] = pj;
+        ti[b] = pc;
+      }
+      counts[i] = static_cast<int>(count);
+    }
+  }
+  for (int i = 0; i < n; ++i) first_[i + 1] = first_[i] + counts[i];
+  partner_.clear();
+  image_.clear();
+  partner_.reserve(first_[n]);
+  image_.reserve(first_[n]);
+  for (int t = 0; t < threads; ++t) {
+    partner_.insert(partner_.end(), thread_partner_[t].begin(), thread_partner_[t].end());
+    image_.insert(image_.end(), thread_image_[t].begin(), thread_image_[t].end());
+  }
+
+  // Map new pairs onto old ones (both lists are sorted per i).
+  previous_index_.assign(partner_.size(), -1);
+  if (old_first.size() == first_.size()) {
+#pragma omp parallel for num_threads(threads) schedule(static)
+    for (int i = 0; i < n; ++i) {
+      int o = old_first[i];
+      const int o_end = old_first[i + 1];
+      for (int p = first_[i]; p < first_[i + 1]; ++p) {
+        while (o < o_end && (old_partner[o] < partner_[p] ||
+                             (old_partner[o] == partner_[p] && old_image[o] < image_[p])))
+          ++o;
+        if (o < o_end && old_partner[o] == partner_[p] && old_image[o] == image_[p]) previous_index_[p] = o;
+      }
+    }
+  }
+  position_at_build_ = position;
+  radius_at_build_ = radius;
+  ++builds_;
+}
+
+bool NeighborList::needs_rebuild(const std::vector<Vec3>& position, const std::vector<double>& radius) const {
+  const std::size_t n = position.size();
+  if (position_at_build_.size() != n || radius_at_build_.size() != n) return true;
+  // A listed-out pair can come into range when the two moved towards each other and grew:
+  // 2*max displacement + 2*max growth must stay below the skin.
+  double max_disp2 = 0.0, max_growth = 0.0;
+  for (std::size_t i = 0; i < n; ++i) {
+    max_disp2 = std::max(max_disp2, norm2(position[i] - position_at_build_[i]));
+    max_growth = std::max(max_growth, radius[i] - radius_at_build_[i]);
+  }
+  return 2.0 * (std::sqrt(max_disp2) + max_growth) >= skin_;
+}
+
+std::vector<PairEntry> brute_force_pairs(const Box& box, const std::vector<Vec3>& position,
+                                         const std::vector<double>& radius, double skin) {
+  std::vector<PairEntry> out;
+  const int n = static_cast<int>(position.size());
+  std::vector<Vec3> wrapped(position);
+  for (auto& p : wrapped) p = box.wrap(p);
+  for (int i = 0; i < n; ++i)
+    for (int j = i; j < n; ++j)
+      for (int code = 0; code < 27; ++code) {
+        const auto s = image_of_code(code);
+        if ((s[0] && !box.periodic[0]) || (s[1] && !box.periodic[1]) || (s[2] && !box.periodic[2])) continue;
+        if (j == i && code <= unshifted_image) continue;
+        const Vec3 d = wrapped[j] + box.shift_vector(s) - wrapped[i];
+        const double cut = radius[i] + radius[j] + skin;
+        if (norm2(d) < cut * cut) out.push_back({i, j, code});
+      }
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
+std::vector<PairEntry> sorted_pairs(const NeighborList& list) {
+  std::vector<PairEntry> out;
+  const int n = static_cast<int>(list.particle_count());
+  for (int i = 0; i < n; ++i)
+    for (int p = list.first(i); p < list.first(i + 1); ++p) out.push_back({i, list.partner()[p], list.image()[p]});
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
+}  // namespace packlab

@@ -1,0 +1,312 @@
+#include "packlab/dem/engine.hpp"
+
+#include <fmt/format.h>
+#include <omp.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+#include <numbers>
+
+#include "packlab/core/error.hpp"
+#include "packlab/core/spatial_sort.hpp"
+#include "packlab/dem/local_damping.hpp"
+
+namespace packlab::dem {
+
+std::vector<std::string> contact_law_names() { return {LinearContact::name}; }
+
+namespace {
+
+template <class Law>
+ContactModel<Law> make_model(const std::vector<TypeParams>& types, int type_count, StiffnessRule rule) {
+  ContactModel<Law> model;
+  model.type_count = type_count;
+  model.pair_params.resize(static_cast<std::size_t>(type_count) * type_count);
+  auto of = [&](int t) -> const TypeParams& { return types.size() == 1 ? types[0] : types[t]; };
+  for (int a = 0; a < type_count; ++a)
+    for (int b = 0; b < type_count; ++b) model.pair_params[a * type_count + b] = Law::mix(of(a), of(b), rule);
+  return model;
+}
+
+ContactModels make_models(const std::string& name, const std::vector<TypeParams>& types, int type_count,
+                          StiffnessRule rule) {
+  if (name == LinearContact::name) return make_model<LinearContact>(types, type_count, rule);
+  fail_input(fmt::format("contact_law = {}: must be one of: {}", name, fmt::join(contact_law_names(), ", ")));
+}
+
+}  // namespace
+
+Engine::Engine(const Packing& packing, const EngineConfig& config) : packing_(packing), config_(config) {
+  packing_.validate();
+  validate(config_.types);
+  require(config_.time_step >= 0.0 && std::isfinite(config_.time_step), "time_step", config_.time_step,
+          ">= 0 s (0 = automatic)");
+  require(config_.time_step_safety > 0.0 && config_.time_step_safety <= 1.0, "time_step_safety",
+          config_.time_step_safety, "in (0, 1]");
+  require(config_.skin_ratio > 0.0 && config_.skin_ratio <= 10.0, "skin_ratio", config_.skin_ratio,
+          "in (0, 10]");
+  require(config_.threads >= 0, "threads", config_.threads, ">= 0 (0 = all cores)");
+
+  const std::size_t n = packing_.size();
+  int type_count = 1;
+  for (int t : packing_.type) type_count = std::max(type_count, t + 1);
+  if (config_.types.size() > 1 && static_cast<int>(config_.types.size()) < type_count)
+    fail_input(fmt::format("the packing has particle type {} but parameters were given for {} types",
+                           type_count - 1, config_.types.size()));
+
+  double r_max = 0.0;
+  for (double r : packing_.radius) r_max = std::max(r_max, r);
+  original_index_ = spatial_order(packing_.box, packing_.position, 2.0 * r_max * (1.0 + config_.skin_ratio));
+  particles_.resize(n);
+  damping_.resize(n);
+  for (std::size_t k = 0; k < n; ++k) {
+    const std::size_t i = static_cast<std::size_t>(original_index_[k]);
+    const TypeParams& tp = params_of_type(packing_.type[i]);
+    const double r = packing_.radius[i];
+    const double density = packing_.density.empty() ? tp.density : packing_.density[i];
+    particles_.position[k] = packing_.position[i];
+    particles_.velocity[k] = packing_.velocity.empty() ? Vec3{} : packing_.velocity[i];
+    particles_.angular_velocity[k] = packing_.angular_velocity.empty() ? Vec3{} : packing_.angular_velocity[i];
+    particles_.radius[k] = r;
+    particles_.type[k] = packing_.type[i];
+    particles_.fixed[k] = packing_.fixed.empty() ? 0 : packing_.fixed[i];
+    particles_.mass[k] = density * 4.0 / 3.0 * std::numbers::pi * r * r * r;
+    particles_.inertia[k] = 0.4 * particles_.mass[k] * r * r;
+    particles_.inverse_mass[k] = particles_.fixed[k] ? 0.0 : 1.0 / particles_.mass[k];
+    particles_.inverse_inertia[k] = particles_.fixed[k] ? 0.0 : 1.0 / particles_.inertia[k];
+    if (particles_.fixed[k]) particles_.velocity[k] = particles_.angular_velocity[k] = Vec3{};
+    damping_[k] = tp.damping;
+  }
+
+  model_ = make_models(config_.contact_law, config_.types, type_count, config_.stiffness_rule);
+  threads_ = config_.threads > 0 ? config_.threads : omp_get_max_threads();
+  thread_force_.assign(threads_, {});
+  thread_torque_.assign(threads_, {});
+  thread_totals_.assign(threads_, {});
+
+  neighbors_.set_skin(config_.skin_ratio * r_max);
+  dt_ = config_.time_step > 0.0 ? config_.time_step : critical_time_step();
+  if (!(dt_ > 0.0) || !std::isfinite(dt_)) fail_input("time step: could not be determined (no particles?)");
+  refresh_neighbors();
+}
+
+const TypeParams& Engine::params_of_type(int type) const {
+  return config_.types.size() == 1 ? config_.types[0] : config_.types[type];
+}
+
+double Engine::critical_time_step() const {
+  double dt = std::numeric_limits<double>::infinity();
+  std::visit(
+      [&](const auto& model) {
+        using Law = std::decay_t<decltype(model.law)>;
+        for (std::size_t i = 0; i < particles_.size(); ++i) {
+          if (particles_.fixed[i]) continue;
+          const int t = particles_.type[i];
+          const double k = Law::stiffness(model.pair_params[t * model.type_count + t]);
+          if (k > 0.0) dt = std::min(dt, std::sqrt(particles_.mass[i] / k));
+        }
+      },
+      model_);
+  return config_.time_step_safety * dt;
+}
+
+void Engine::set_time_step(double dt) {
+  require(dt > 0.0 && std::isfinite(dt), "time_step", dt, "> 0 s");
+  dt_ = dt;
+}
+
+void Engine::refresh_neighbors() {
+  neighbors_.build(packing_.box, particles_.position, particles_.radius, threads_);
+  std::visit(
+      [&](auto& model) {
+        using History = typename std::decay_t<decltype(model.law)>::History;
+        std::vector<History> remapped(neighbors_.pair_count(), History{});
+        const auto& previous = neighbors_.previous_index();
+        for (std::size_t p = 0; p < remapped.size(); ++p)
+          if (previous[p] >= 0 && static_cast<std::size_t>(previous[p]) < model.history.size())
+            remapped[p] = model.history[previous[p]];
+        model.history.swap(remapped);
+      },
+      model_);
+}
+
+template <class Law, bool Measure>
+void Engine::pair_forces(ContactModel<Law>& model, Totals& totals) {
+  const int n = static_cast<int>(particles_.size());
+  const int T = threads_;
+  const Vec3* x = particles_.position.data();
+  const Vec3* v = particles_.velocity.data();
+  const Vec3* w = particles_.angular_velocity.data();
+  const double* rad = particles_.radius.data();
+  const int* type = particles_.type.data();
+  const int* first = neighbors_.first_pairs().data();
+  const int* partner = neighbors_.partner().data();
+  const std::uint8_t* image = neighbors_.image().data();
+  const int pair_total = first[n];
+  const double dt = dt_;
+  const int type_count = model.type_count;
+  const auto* params = model.pair_params.data();
+  auto* history = model.history.data();
+  std::array<Vec3, 27> offsets;  // local copy: the force stores below cannot alias it
+  for (int c = 0; c < 27; ++c) offsets[c] = neighbors_.image_offset(c);
+
+#pragma omp parallel num_threads(T)
+  {
+    const int t = omp_get_thread_num();
+    Vec3* force;
+    Vec3* torque;
+    if (T == 1) {
+      force = particles_.force.data();
+      torque = particles_.torque.data();
+    } else {
+      thread_force_[t].resize(n);
+      thread_torque_[t].resize(n);
+      force = thread_force_[t].data();
+      torque = thread_torque_[t].data();
+    }
+    std::fill(force, force + n, Vec3{});
+    std::fill(torque, torque + n, Vec3{});
+    Totals local;
+    // Contiguous ranges of particles holding about equal numbers of pairs.
+    const long pair_begin = static_cast<long>(pair_total) * t / T;
+    const long pair_end = static_cast<long>(pair_total) * (t + 1) / T;
+    int i = static_cast<int>(std::upper_bound(first, first + n + 1, static_cast<int>(pair_begin)) - first) - 1;
+    for (long p = pair_begin; p < pair_end; ++p) {
+      while (first[i + 1] <= p) ++i;
+      const int j = partner[p];
+      const Vec3 d = x[j] + offsets[image[p]] - x[i];
+      const double dist2 = norm2(d);
+      const double rsum = rad[i] + rad[j];
+      if (dist2 >= rsum * rsum) {
+        history[p] = typename Law::History{};  // contact lost: its history ends
+        continue;
+      }
+      const double dist = std::sqrt(dist2);
+      ContactGeometry g;
+      g.normal = d * (1.0 / dist);
+      g.overlap = rsum - dist;
+      g.branch_i = rad[i] - 0.5 * g.overlap;
+      g.branch_j = rad[j] - 0.5 * g.overlap;
+      g.relative_velocity = v[j] - v[i] - cross(g.branch_j * w[j] + g.branch_i * w[i], g.normal);
+      g.mean_spin = 0.5 * (w[i] + w[j]);
+      g.dt = dt;
+      const PairForce f = Law::evaluate(g, params[type[i] * type_count + type[j]], history[p]);
+      force[i] -= f.force_on_j;
+      force[j] += f.force_on_j;
+      torque[i] += f.torque_i;
+      torque[j] += f.torque_j;
+      if constexpr (Measure) {
+        ++local.contacts;
+        local.contact_force_sum += norm(f.force_on_j);
+        local.strain_energy += f.energy;
+        local.max_overlap_ratio = std::max(local.max_overlap_ratio, g.overlap / rsum);
+      }
+    }
+    if constexpr (Measure) thread_totals_[t] = local;
+#pragma omp barrier
+    if (T > 1) {
+      // Sum the thread buffers in thread order: deterministic for a fixed thread count.
+#pragma omp for schedule(static)
+      for (int k = 0; k < n; ++k) {
+        Vec3 f{}, m{};
+        for (int s = 0; s < T; ++s) {
+          f += thread_force_[s][k];
+          m += thread_torque_[s][k];
+        }
+        particles_.force[k] = f;
+        particles_.torque[k] = m;
+      }
+    }
+  }
+  if constexpr (Measure) {
+    for (int t = 0; t < T; ++t) {
+      totals.contacts += thread_totals_[t].contacts;
+      totals.contact_force_sum += thread_totals_[t].contact_force_sum;
+      totals.strain_energy += thread_totals_[t].strain_energy;
+      totals.max_overlap_ratio = std::max(totals.max_overlap_ratio, thread_totals_[t].max_overlap_ratio);
+    }
+  }
+}
+
+template <bool Measure>
+void Engine::integrate(Totals& totals) {
+  const int n = static_cast<int>(particles_.size());
+  const double dt = dt_;
+  auto& P = particles_;
+  double kinetic = 0.0, unbalanced = 0.0;
+  long free_count = 0;
+#pragma omp parallel for num_threads(threads_) schedule(static) reduction(+ : kinetic, unbalanced, free_count)
+  for (int i = 0; i < n; ++i) {
+    if (P.fixed[i]) continue;
+    const double alpha = damping_[i];
+    const Vec3 f = alpha > 0.0 ? apply_local_damping(P.force[i], P.velocity[i], alpha) : P.force[i];
+    const Vec3 m = alpha > 0.0 ? apply_local_damping(P.torque[i], P.angular_velocity[i], alpha) : P.torque[i];
+    const Vec3 dv = (P.inverse_mass[i] * dt) * f;
+    const Vec3 dw = (P.inverse_inertia[i] * dt) * m;
+    if constexpr (Measure) {
+      const Vec3 v_sync = P.velocity[i] + 0.5 * dv;
+      const Vec3 w_sync = P.angular_velocity[i] + 0.5 * dw;
+      kinetic += 0.5 * (P.mass[i] * norm2(v_sync) + P.inertia[i] * norm2(w_sync));
+      unbalanced += norm(P.force[i]);
+      ++free_count;
+    }
+    P.velocity[i] += dv;
+    P.angular_velocity[i] += dw;
+    P.position[i] += dt * P.velocity[i];
+  }
+  if constexpr (Measure) {
+    totals.kinetic_energy = kinetic;
+    totals.unbalanced_force_sum = unbalanced;
+    totals.free_particles = static_cast<std::size_t>(free_count);
+  }
+}
+
+template <bool Measure>
+Engine::Totals Engine::step_impl() {
+  if (neighbors_.needs_rebuild(particles_.position, particles_.radius)) refresh_neighbors();
+  Totals totals;
+  std::visit([&](auto& model) { pair_forces<std::decay_t<decltype(model.law)>, Measure>(model, totals); }, model_);
+  integrate<Measure>(totals);
+  ++step_;
+  time_ += dt_;
+  return totals;
+}
+
+void Engine::run(long steps) {
+  for (long s = 0; s < steps; ++s) step_impl<false>();
+}
+
+Diagnostics Engine::step_measured() {
+  Diagnostics d;
+  d.step = step_;
+  d.time = time_;
+  const Totals t = step_impl<true>();
+  d.kinetic_energy = t.kinetic_energy;
+  d.strain_energy = t.strain_energy;
+  d.contacts = t.contacts;
+  d.max_overlap_ratio = t.max_overlap_ratio;
+  const std::size_t n = particles_.size();
+  d.mean_coordination = n ? 2.0 * static_cast<double>(t.contacts) / static_cast<double>(n) : 0.0;
+  if (t.contacts > 0 && t.free_particles > 0 && t.contact_force_sum > 0.0)
+    d.unbalanced_force_ratio = (t.unbalanced_force_sum / static_cast<double>(t.free_particles)) /
+                               (t.contact_force_sum / static_cast<double>(t.contacts));
+  return d;
+}
+
+Packing Engine::packing() const {
+  Packing out = packing_;
+  const std::size_t n = particles_.size();
+  out.velocity.resize(n);
+  out.angular_velocity.resize(n);
+  for (std::size_t k = 0; k < n; ++k) {
+    const std::size_t i = static_cast<std::size_t>(original_index_[k]);
+    out.position[i] = out.box.wrap(particles_.position[k]);
+    out.velocity[i] = particles_.velocity[k];
+    out.angular_velocity[i] = particles_.angular_velocity[k];
+  }
+  return out;
+}
+
+}  // namespace packlab::dem

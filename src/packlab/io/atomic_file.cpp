@@ -1,0 +1,55 @@
+#include "packlab/io/atomic_file.hpp"
+
+#include <fmt/format.h>
+#include <unistd.h>
+
+#include <fstream>
+#include <system_error>
+
+#include "packlab/core/error.hpp"
+
+namespace packlab::io {
+
+void write_atomically(const std::filesystem::path& path,
+                      const std::function<void(std::ostream&)>& write) {
+  const auto parent = path.has_parent_path() ? path.parent_path() : std::filesystem::path(".");
+  if (!std::filesystem::is_directory(parent))
+    fail_input(fmt::format("cannot write {}: folder {} does not exist", path.string(), parent.string()));
+  // Unique per process so two runs writing the same target never share a temporary.
+  const auto tmp = parent / fmt::format(".{}.tmp{}", path.filename().string(), ::getpid());
+  try {
+    {
+      std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
+      if (!out) fail_input(fmt::format("cannot write {}: cannot open a temporary file", path.string()));
+      out.exceptions(std::ios::badbit | std::ios::failbit);
+      write(out);
+      out.flush();
+    }
+    std::filesystem::rename(tmp, path);
+  } catch (const std::ios_base::failure&) {
+    std::error_code ec;
+    std::filesystem::remove(tmp, ec);
+    fail_input(fmt::format("cannot write {}: write failed (disk full or no permission?)", path.string()));
+  } catch (...) {
+    std::error_code ec;
+    std::filesystem::remove(tmp, ec);
+    throw;
+  }
+}
+
+void write_text_atomically(const std::filesystem::path& path, const std::string& text) {
+  write_atomically(path, [&](std::ostream& out) { out << text; });
+}
+
+void ensure_directory(const std::filesystem::path& dir) {
+  std::error_code ec;
+  if (std::filesystem::exists(dir, ec)) {
+    if (!std::filesystem::is_directory(dir, ec))
+      fail_input(fmt::format("output folder {} exists and is not a folder", dir.string()));
+    return;
+  }
+  std::filesystem::create_directories(dir, ec);
+  if (ec) fail_input(fmt::format("cannot create output folder {}: {}", dir.string(), ec.message()));
+}
+
+}  // namespace packlab::io
