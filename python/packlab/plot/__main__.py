@@ -1,0 +1,5 @@
+import sys
+
+from packlab.plot import main
+
+sys.exit(main())
