@@ -13,8 +13,15 @@ namespace {
 // Single quotes for the shell, with embedded quotes escaped.
 std::string quote(const std::string& s) {
   std::string out = "'";
-  for (char c : s) out += c == '\'' ? std::string("'\\''") : std::string(1, c);
-  return out + "'";
+  for (char c : s) {
+    if (c == '\'') {
+      out.append("'\\''");
+    } else {
+      out.push_back(c);
+    }
+  }
+  out.push_back('\'');
+  return out;
 }
 
 bool warned = false;  // say "no plots" once per process
@@ -33,8 +40,13 @@ bool make_plot(const std::string& kind, const std::vector<std::string>& args, co
   std::string cmd = fmt::format("PYTHONPATH={}${{PYTHONPATH:+:$PYTHONPATH}} {} -m packlab.plot {}",
                                 quote(python_package_dir().string()), python ? quote(python) : "/usr/bin/python3",
                                 quote(kind));
-  for (const auto& a : args) cmd += " " + quote(a);
-  cmd += " --out " + quote(png.string()) + " 2>&1";
+  for (const auto& a : args) {
+    cmd.push_back(' ');
+    cmd.append(quote(a));
+  }
+  cmd.append(" --out ");
+  cmd.append(quote(png.string()));
+  cmd.append(" 2>&1");
   FILE* pipe = ::popen(cmd.c_str(), "r");
   std::string output;
   if (pipe) {
