@@ -21,6 +21,7 @@ int main(int argc, char** argv) {
   packlab::cli::add_info(app);
   packlab::cli::add_convert(app);
   packlab::cli::add_relax(app);
+  // Further subcommands register here, one line each (their files are in src/packlab/cli/).
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "packlab/core/binary_io.hpp"
 #include "packlab/core/error.hpp"
 
 namespace packlab {
@@ -218,6 +219,36 @@ bool NeighborList::needs_rebuild(const std::vector<Vec3>& position, const std::v
     max_growth = std::max(max_growth, radius[i] - radius_at_build_[i]);
   }
   return 2.0 * (std::sqrt(max_disp2) + max_growth) >= skin_;
+}
+
+void NeighborList::save(std::ostream& out) const {
+  binary::write(out, skin_);
+  binary::write(out, builds_);
+  binary::write_vector(out, first_);
+  binary::write_vector(out, partner_);
+  binary::write_vector(out, image_);
+  binary::write_vector(out, previous_index_);
+  binary::write(out, offsets_);
+  binary::write_vector(out, position_at_build_);
+  binary::write_vector(out, radius_at_build_);
+}
+
+void NeighborList::load(std::istream& in) {
+  binary::read(in, skin_, "neighbour skin");
+  binary::read(in, builds_, "neighbour builds");
+  binary::read_vector(in, first_, "neighbour index");
+  binary::read_vector(in, partner_, "neighbour partners");
+  binary::read_vector(in, image_, "neighbour images");
+  binary::read_vector(in, previous_index_, "neighbour history map");
+  binary::read(in, offsets_, "image offsets");
+  binary::read_vector(in, position_at_build_, "positions at build");
+  binary::read_vector(in, radius_at_build_, "radii at build");
+  const std::size_t n = position_at_build_.size();
+  if (first_.size() != n + 1 || radius_at_build_.size() != n || image_.size() != partner_.size() ||
+      (n > 0 && static_cast<std::size_t>(first_[n]) != partner_.size()))
+    fail_input("checkpoint is damaged: inconsistent neighbour list");
+  for (int j : partner_)
+    if (j < 0 || static_cast<std::size_t>(j) >= n) fail_input("checkpoint is damaged: neighbour index out of range");
 }
 
 std::vector<PairEntry> brute_force_pairs(const Box& box, const std::vector<Vec3>& position,

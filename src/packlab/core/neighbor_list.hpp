@@ -9,6 +9,8 @@
 
 #include <array>
 #include <cstdint>
+#include <istream>
+#include <ostream>
 #include <vector>
 
 #include "packlab/core/box.hpp"
@@ -52,6 +54,10 @@ class NeighborList {
   // Displacement of image code c in the box the list was built for.
   const Vec3& image_offset(int code) const { return offsets_[code]; }
   long builds() const { return builds_; }
+
+  // Exact state (pairs and the positions/radii at the last build) for checkpoints.
+  void save(std::ostream& out) const;
+  void load(std::istream& in);
 
  private:
   double skin_;

@@ -9,6 +9,7 @@
 #include <limits>
 #include <numbers>
 
+#include "packlab/core/binary_io.hpp"
 #include "packlab/core/error.hpp"
 #include "packlab/core/spatial_sort.hpp"
 #include "packlab/dem/local_damping.hpp"
@@ -16,6 +17,14 @@
 namespace packlab::dem {
 
 std::vector<std::string> contact_law_names() { return {LinearContact::name}; }
+
+TimeStepRule time_step_rule_from_name(const std::string& name) {
+  if (name == "global") return TimeStepRule::global;
+  if (name == "contacts") return TimeStepRule::contacts;
+  fail_input(fmt::format("time_step_rule = {}: must be 'global' or 'contacts'", name));
+}
+
+std::string time_step_rule_name(TimeStepRule rule) { return rule == TimeStepRule::global ? "global" : "contacts"; }
 
 namespace {
 
@@ -47,6 +56,8 @@ Engine::Engine(const Packing& packing, const EngineConfig& config) : packing_(pa
           config_.time_step_safety, "in (0, 1]");
   require(config_.skin_ratio > 0.0 && config_.skin_ratio <= 10.0, "skin_ratio", config_.skin_ratio,
           "in (0, 10]");
+  require(config_.max_time_step >= 0.0 && std::isfinite(config_.max_time_step), "max_time_step",
+          config_.max_time_step, ">= 0 s (0 = automatic)");
   require(config_.threads >= 0, "threads", config_.threads, ">= 0 (0 = all cores)");
 
   const std::size_t n = packing_.size();
@@ -61,6 +72,7 @@ Engine::Engine(const Packing& packing, const EngineConfig& config) : packing_(pa
   original_index_ = spatial_order(packing_.box, packing_.position, 2.0 * r_max * (1.0 + config_.skin_ratio));
   particles_.resize(n);
   damping_.resize(n);
+  density_.resize(n);
   for (std::size_t k = 0; k < n; ++k) {
     const std::size_t i = static_cast<std::size_t>(original_index_[k]);
     const TypeParams& tp = params_of_type(packing_.type[i]);
@@ -72,10 +84,8 @@ Engine::Engine(const Packing& packing, const EngineConfig& config) : packing_(pa
     particles_.radius[k] = r;
     particles_.type[k] = packing_.type[i];
     particles_.fixed[k] = packing_.fixed.empty() ? 0 : packing_.fixed[i];
-    particles_.mass[k] = density * 4.0 / 3.0 * std::numbers::pi * r * r * r;
-    particles_.inertia[k] = 0.4 * particles_.mass[k] * r * r;
-    particles_.inverse_mass[k] = particles_.fixed[k] ? 0.0 : 1.0 / particles_.mass[k];
-    particles_.inverse_inertia[k] = particles_.fixed[k] ? 0.0 : 1.0 / particles_.inertia[k];
+    density_[k] = density;
+    update_mass(k);
     if (particles_.fixed[k]) particles_.velocity[k] = particles_.angular_velocity[k] = Vec3{};
     damping_[k] = tp.damping;
   }
@@ -87,7 +97,12 @@ Engine::Engine(const Packing& packing, const EngineConfig& config) : packing_(pa
   thread_totals_.assign(threads_, {});
 
   neighbors_.set_skin(config_.skin_ratio * r_max);
-  dt_ = config_.time_step > 0.0 ? config_.time_step : critical_time_step();
+  if (config_.time_step > 0.0)
+    dt_ = config_.time_step;
+  else if (config_.time_step_rule == TimeStepRule::contacts)
+    dt_ = config_.max_time_step > 0.0 ? config_.max_time_step : heaviest_particle_time_step();
+  else
+    dt_ = critical_time_step();
   if (!(dt_ > 0.0) || !std::isfinite(dt_)) fail_input("time step: could not be determined (no particles?)");
   refresh_neighbors();
 }
@@ -110,6 +125,49 @@ double Engine::critical_time_step() const {
       },
       model_);
   return config_.time_step_safety * dt;
+}
+
+void Engine::update_mass(std::size_t k) {
+  const double r = particles_.radius[k];
+  particles_.mass[k] = density_[k] * 4.0 / 3.0 * std::numbers::pi * r * r * r;
+  particles_.inertia[k] = 0.4 * particles_.mass[k] * r * r;
+  particles_.inverse_mass[k] = particles_.fixed[k] ? 0.0 : 1.0 / particles_.mass[k];
+  particles_.inverse_inertia[k] = particles_.fixed[k] ? 0.0 : 1.0 / particles_.inertia[k];
+}
+
+double Engine::heaviest_particle_time_step() const {
+  double dt = 0.0;
+  std::visit(
+      [&](const auto& model) {
+        using Law = std::decay_t<decltype(model.law)>;
+        for (std::size_t i = 0; i < particles_.size(); ++i) {
+          const int t = particles_.type[i];
+          const double k = Law::stiffness(model.pair_params[t * model.type_count + t]);
+          if (k > 0.0) dt = std::max(dt, std::sqrt(particles_.mass[i] / k));
+        }
+      },
+      model_);
+  return config_.time_step_safety * dt;
+}
+
+void Engine::set_radius_of_type(int type, double radius) {
+  require(radius > 0.0 && std::isfinite(radius), "radius", radius, "> 0 m");
+  for (std::size_t k = 0; k < particles_.size(); ++k)
+    if (particles_.type[k] == type) {
+      particles_.radius[k] = radius;
+      update_mass(k);
+    }
+}
+
+void Engine::set_radii(const std::vector<double>& radius) {
+  if (radius.size() != particles_.size())
+    fail_input(fmt::format("set_radii: {} radii for {} particles", radius.size(), particles_.size()));
+  for (std::size_t k = 0; k < particles_.size(); ++k) {
+    const double r = radius[static_cast<std::size_t>(original_index_[k])];
+    require(r > 0.0 && std::isfinite(r), "radius", r, "> 0 m");
+    particles_.radius[k] = r;
+    update_mass(k);
+  }
 }
 
 void Engine::set_time_step(double dt) {
@@ -148,6 +206,7 @@ void Engine::pair_forces(ContactModel<Law>& model, Totals& totals) {
   const double dt = dt_;
   const int type_count = model.type_count;
   const auto* params = model.pair_params.data();
+  const double* inverse_mass = particles_.inverse_mass.data();
   auto* history = model.history.data();
   std::array<Vec3, 27> offsets;  // local copy: the force stores below cannot alias it
   for (int c = 0; c < 27; ++c) offsets[c] = neighbors_.image_offset(c);
@@ -192,7 +251,10 @@ void Engine::pair_forces(ContactModel<Law>& model, Totals& totals) {
       g.relative_velocity = v[j] - v[i] - cross(g.branch_j * w[j] + g.branch_i * w[i], g.normal);
       g.mean_spin = 0.5 * (w[i] + w[j]);
       g.dt = dt;
-      const PairForce f = Law::evaluate(g, params[type[i] * type_count + type[j]], history[p]);
+      const auto& pair_params = params[type[i] * type_count + type[j]];
+      const PairForce f = Law::evaluate(g, pair_params, history[p]);
+      local.max_stiffness_over_mass = std::max(
+          local.max_stiffness_over_mass, Law::stiffness(pair_params) * std::max(inverse_mass[i], inverse_mass[j]));
       force[i] -= f.force_on_j;
       force[j] += f.force_on_j;
       torque[i] += f.torque_i;
@@ -204,7 +266,7 @@ void Engine::pair_forces(ContactModel<Law>& model, Totals& totals) {
         local.max_overlap_ratio = std::max(local.max_overlap_ratio, g.overlap / rsum);
       }
     }
-    if constexpr (Measure) thread_totals_[t] = local;
+    thread_totals_[t] = local;
 #pragma omp barrier
     if (T > 1) {
       // Sum the thread buffers in thread order: deterministic for a fixed thread count.
@@ -220,6 +282,8 @@ void Engine::pair_forces(ContactModel<Law>& model, Totals& totals) {
       }
     }
   }
+  for (int t = 0; t < T; ++t)
+    totals.max_stiffness_over_mass = std::max(totals.max_stiffness_over_mass, thread_totals_[t].max_stiffness_over_mass);
   if constexpr (Measure) {
     for (int t = 0; t < T; ++t) {
       totals.contacts += thread_totals_[t].contacts;
@@ -268,6 +332,12 @@ Engine::Totals Engine::step_impl() {
   if (neighbors_.needs_rebuild(particles_.position, particles_.radius)) refresh_neighbors();
   Totals totals;
   std::visit([&](auto& model) { pair_forces<std::decay_t<decltype(model.law)>, Measure>(model, totals); }, model_);
+  if (config_.time_step <= 0.0 && config_.time_step_rule == TimeStepRule::contacts) {
+    const double cap = config_.max_time_step > 0.0 ? config_.max_time_step : heaviest_particle_time_step();
+    dt_ = totals.max_stiffness_over_mass > 0.0
+              ? std::min(cap, config_.time_step_safety / std::sqrt(totals.max_stiffness_over_mass))
+              : cap;
+  }
   integrate<Measure>(totals);
   ++step_;
   time_ += dt_;
@@ -295,6 +365,70 @@ Diagnostics Engine::step_measured() {
   return d;
 }
 
+namespace {
+constexpr std::uint64_t checkpoint_magic = 0x314B43454D454450ULL;  // "PDEMECK1"
+}
+
+void Engine::save_state(std::ostream& out) const {
+  binary::write(out, checkpoint_magic);
+  binary::write(out, static_cast<std::uint64_t>(particles_.size()));
+  binary::write(out, static_cast<std::uint64_t>(model_.index()));
+  binary::write(out, step_);
+  binary::write(out, time_);
+  binary::write(out, dt_);
+  const auto& P = particles_;
+  binary::write_vector(out, P.position);
+  binary::write_vector(out, P.velocity);
+  binary::write_vector(out, P.angular_velocity);
+  binary::write_vector(out, P.force);
+  binary::write_vector(out, P.torque);
+  binary::write_vector(out, P.radius);
+  binary::write_vector(out, P.type);
+  binary::write_vector(out, P.fixed);
+  binary::write_vector(out, density_);
+  binary::write_vector(out, damping_);
+  binary::write_vector(out, original_index_);
+  neighbors_.save(out);
+  std::visit([&](const auto& model) { binary::write_vector(out, model.history); }, model_);
+}
+
+void Engine::load_state(std::istream& in) {
+  std::uint64_t magic = 0, n = 0, law = 0;
+  binary::read(in, magic, "header");
+  if (magic != checkpoint_magic) fail_input("checkpoint: not a packlab engine state (bad header)");
+  binary::read(in, n, "particle count");
+  binary::read(in, law, "contact law");
+  if (n != particles_.size())
+    fail_input(fmt::format("checkpoint holds {} particles, the engine {}", n, particles_.size()));
+  if (law != model_.index()) fail_input("checkpoint was written with another contact law");
+  binary::read(in, step_, "step");
+  binary::read(in, time_, "time");
+  binary::read(in, dt_, "time step");
+  auto& P = particles_;
+  binary::read_vector(in, P.position, "positions");
+  binary::read_vector(in, P.velocity, "velocities");
+  binary::read_vector(in, P.angular_velocity, "angular velocities");
+  binary::read_vector(in, P.force, "forces");
+  binary::read_vector(in, P.torque, "torques");
+  binary::read_vector(in, P.radius, "radii");
+  binary::read_vector(in, P.type, "types");
+  binary::read_vector(in, P.fixed, "fixed flags");
+  binary::read_vector(in, density_, "densities");
+  binary::read_vector(in, damping_, "damping");
+  binary::read_vector(in, original_index_, "particle order");
+  for (auto* v : {&P.position, &P.velocity, &P.angular_velocity, &P.force, &P.torque})
+    if (v->size() != n) fail_input("checkpoint is damaged: array sizes differ");
+  if (P.radius.size() != n || P.type.size() != n || P.fixed.size() != n || density_.size() != n ||
+      damping_.size() != n || original_index_.size() != n)
+    fail_input("checkpoint is damaged: array sizes differ");
+  for (std::size_t k = 0; k < n; ++k) update_mass(k);
+  neighbors_.load(in);
+  std::visit([&](auto& model) { binary::read_vector(in, model.history, "contact histories"); }, model_);
+  if (neighbors_.particle_count() != n || std::visit([&](auto& m) { return m.history.size(); }, model_) !=
+                                              neighbors_.pair_count())
+    fail_input("checkpoint is damaged: contact histories do not match the neighbour list");
+}
+
 Packing Engine::packing() const {
   Packing out = packing_;
   const std::size_t n = particles_.size();
@@ -303,6 +437,7 @@ Packing Engine::packing() const {
   for (std::size_t k = 0; k < n; ++k) {
     const std::size_t i = static_cast<std::size_t>(original_index_[k]);
     out.position[i] = out.box.wrap(particles_.position[k]);
+    out.radius[i] = particles_.radius[k];
     out.velocity[i] = particles_.velocity[k];
     out.angular_velocity[i] = particles_.angular_velocity[k];
   }

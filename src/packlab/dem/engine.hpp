@@ -13,6 +13,8 @@
 #pragma once
 
 #include <cstddef>
+#include <istream>
+#include <ostream>
 #include <string>
 #include <variant>
 #include <vector>
@@ -25,6 +27,17 @@
 
 namespace packlab::dem {
 
+// How the time step is chosen when EngineConfig::time_step is 0.
+//   global:   safety * min over all particles of sqrt(m_i / k_i), fixed for the run;
+//   contacts: refreshed every step from the contacts present, safety * min over touching
+//             pairs of sqrt(m / k) with m the lighter of the two (PFC's practice), capped at
+//             max_time_step. Needed when tiny light particles (void particles) would make the
+//             global step unusably small while they touch nothing (DESIGN.md numerical notes).
+enum class TimeStepRule { global, contacts };
+
+TimeStepRule time_step_rule_from_name(const std::string& name);
+std::string time_step_rule_name(TimeStepRule rule);
+
 struct EngineConfig {
   std::string contact_law = "linear";
   // Parameters per particle type; a single entry applies to every type.
@@ -32,6 +45,10 @@ struct EngineConfig {
   StiffnessRule stiffness_rule = StiffnessRule::particle;
   double time_step = 0.0;          // [s]; 0 = time_step_safety * min_i sqrt(m_i / k_i)
   double time_step_safety = 0.2;   // [-]
+  TimeStepRule time_step_rule = TimeStepRule::global;
+  // contacts rule: upper bound [s]; 0 = safety * max over particles of sqrt(m_i / k_i)
+  // (the step the heaviest particle needs), used while nothing touches.
+  double max_time_step = 0.0;
   double skin_ratio = 0.2;         // Verlet skin as a fraction of the largest radius [-]
   int threads = 0;                 // 0 = OpenMP default
 };
@@ -74,8 +91,19 @@ class Engine {
 
   double time_step() const { return dt_; }
   void set_time_step(double dt);
-  // The time step the automatic rule gives for the current particles and parameters.
+  // safety * min over particles of sqrt(m_i / k_i) for the current particles (global rule).
   double critical_time_step() const;
+  // Changes the radius of every particle of `type` (mass and moment of inertia follow at
+  // constant density; velocities and contact histories are kept).
+  void set_radius_of_type(int type, double radius);
+  // Sets every radius (in the packing's particle order).
+  void set_radii(const std::vector<double>& radius);
+
+  // The whole dynamic state (particles, contact histories, neighbour list, step, time, time
+  // step) in a binary form: an engine built from the same packing and configuration that
+  // loads it continues exactly as the saved one would have.
+  void save_state(std::ostream& out) const;
+  void load_state(std::istream& in);
   long step_count() const { return step_; }
   double time() const { return time_; }
   int threads() const { return threads_; }
@@ -103,6 +131,7 @@ class Engine {
     double kinetic_energy = 0.0;
     double unbalanced_force_sum = 0.0;
     std::size_t free_particles = 0;
+    double max_stiffness_over_mass = 0.0;  // over touching pairs, for the contacts rule
   };
   template <bool Measure>
   Totals step_impl();
@@ -111,6 +140,8 @@ class Engine {
   template <bool Measure>
   void integrate(Totals& totals);
   void refresh_neighbors();
+  void update_mass(std::size_t k);
+  double heaviest_particle_time_step() const;
   const TypeParams& params_of_type(int type) const;
 
   Packing packing_;  // box, types, bonds and fields of the input; positions synced on demand
@@ -118,6 +149,7 @@ class Engine {
   ParticleStore particles_;
   std::vector<double> damping_;  // per particle alpha
   std::vector<int> original_index_;
+  std::vector<double> density_;  // per particle [kg/m^3]
   NeighborList neighbors_;
   ContactModels model_;
   std::vector<std::vector<Vec3>> thread_force_, thread_torque_;

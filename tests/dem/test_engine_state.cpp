@@ -1,0 +1,129 @@
+// Radius growth, the contacts time-step rule and exact checkpoints.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+#include <sstream>
+
+#include "packlab/core/error.hpp"
+#include "packlab/core/random.hpp"
+#include "packlab/dem/engine.hpp"
+#include "packlab/generate/random.hpp"
+
+using namespace packlab;
+using namespace packlab::dem;
+
+namespace {
+
+Packing two_types(long n, std::uint64_t seed) {
+  Random rng(seed);
+  generate::RandomPackingParams p;
+  p.particles = n;
+  p.radius = 0.5;
+  p.volume_fraction = 0.6;
+  Packing packing = generate::make_random_packing(p, rng);
+  for (std::size_t i = 0; i < packing.size(); i += 4) {
+    packing.type[i] = 1;
+    packing.radius[i] = 0.1;
+  }
+  return packing;
+}
+
+EngineConfig two_type_config() {
+  EngineConfig c;
+  c.types = {TypeParams{1000.0, 100.0, 0.3, 1000.0, 0.7}, TypeParams{100.0, 1.0, 0.0, 100.0, 0.7}};
+  c.threads = 2;
+  return c;
+}
+
+}  // namespace
+
+TEST(EngineState, CheckpointContinuesBitwiseIdentically) {
+  // N steps + save + load into a fresh engine + N steps == 2N steps, bit for bit.
+  const Packing p = two_types(600, 4);
+  const EngineConfig config = two_type_config();
+  Engine straight(p, config);
+  straight.run(400);
+  Engine first(p, config);
+  first.run(200);
+  std::stringstream state;
+  first.save_state(state);
+  Engine resumed(p, config);
+  resumed.load_state(state);
+  resumed.run(200);
+  EXPECT_EQ(resumed.step_count(), straight.step_count());
+  EXPECT_EQ(resumed.time(), straight.time());
+  EXPECT_TRUE(resumed.particles().position == straight.particles().position);
+  EXPECT_TRUE(resumed.particles().velocity == straight.particles().velocity);
+  EXPECT_TRUE(resumed.particles().angular_velocity == straight.particles().angular_velocity);
+}
+
+TEST(EngineState, DamagedOrForeignCheckpointIsAnInputError) {
+  const Packing p = two_types(100, 5);
+  Engine e(p, two_type_config());
+  std::stringstream state;
+  e.save_state(state);
+  const std::string bytes = state.str();
+  std::stringstream truncated(bytes.substr(0, bytes.size() / 2));
+  Engine target(p, two_type_config());
+  EXPECT_THROW(target.load_state(truncated), InputError);
+  std::stringstream garbage("this is not a checkpoint at all, just text");
+  EXPECT_THROW(target.load_state(garbage), InputError);
+  Engine other(two_types(104, 5), two_type_config());
+  std::stringstream again(bytes);
+  EXPECT_THROW(other.load_state(again), InputError);
+}
+
+TEST(EngineState, GrowingRadiusScalesMassAtConstantDensity) {
+  Packing p;
+  p.box.length = {10, 10, 10};
+  p.add({2, 2, 2}, 0.5, 0);
+  p.add({6, 6, 6}, 0.1, 1);
+  Engine e(p, two_type_config());
+  e.set_radius_of_type(1, 0.3);
+  const Packing out = e.packing();
+  EXPECT_DOUBLE_EQ(out.radius[1], 0.3);
+  EXPECT_DOUBLE_EQ(out.radius[0], 0.5);
+  for (std::size_t k = 0; k < 2; ++k) {
+    const auto& P = e.particles();
+    const double r = P.radius[k];
+    const double rho = P.type[k] == 1 ? 100.0 : 1000.0;
+    EXPECT_NEAR(P.mass[k], rho * 4.0 / 3.0 * std::numbers::pi * r * r * r, 1e-12 * P.mass[k]);
+    EXPECT_NEAR(P.inertia[k], 0.4 * P.mass[k] * r * r, 1e-12 * P.inertia[k]);
+  }
+  EXPECT_THROW(e.set_radius_of_type(1, -1.0), InputError);
+}
+
+TEST(EngineState, ContactsRuleFollowsTheLightestTouchingParticle) {
+  // A heavy pair touching, and a tiny light particle far away: the step is set by the heavy
+  // pair; once the tiny one touches, by the tiny one.
+  Packing p;
+  p.box.length = {20, 20, 20};
+  p.box.periodic = {false, false, false};
+  p.add({5.0, 5, 5}, 0.5, 0);
+  p.add({5.95, 5, 5}, 0.5, 0);
+  p.add({15, 15, 15}, 0.01, 1);
+  EngineConfig c = two_type_config();
+  c.time_step_rule = TimeStepRule::contacts;
+  c.threads = 1;
+  Engine e(p, c);
+  e.run(1);
+  const double m_heavy = 1000.0 * 4.0 / 3.0 * std::numbers::pi * 0.125;
+  const double k_heavy = combine_stiffness(1000.0, 1000.0, StiffnessRule::particle);
+  EXPECT_NEAR(e.time_step(), 0.2 * std::sqrt(m_heavy / k_heavy), 1e-12);
+  // Global rule for comparison: limited by the tiny particle although it touches nothing.
+  c.time_step_rule = TimeStepRule::global;
+  Engine g(p, c);
+  EXPECT_LT(g.time_step(), 1e-2 * e.time_step());
+  // Move the tiny one onto the heavy pair.
+  p.position[2] = {5.0, 5.5, 5};
+  Engine touching(p, [&] {
+    EngineConfig cc = c;
+    cc.time_step_rule = TimeStepRule::contacts;
+    return cc;
+  }());
+  touching.run(1);
+  const double m_tiny = 100.0 * 4.0 / 3.0 * std::numbers::pi * 1e-6;
+  const double k_mixed = combine_stiffness(1000.0, 100.0, StiffnessRule::particle);
+  EXPECT_NEAR(touching.time_step(), 0.2 * std::sqrt(m_tiny / k_mixed), 1e-12 * touching.time_step());
+}
