@@ -5,6 +5,7 @@
 #include <CLI/CLI.hpp>
 #include <cstdio>
 #include <exception>
+#include <string>
 
 #include "packlab/cli/commands.hpp"
 #include "packlab/core/error.hpp"
@@ -22,6 +23,19 @@ int main(int argc, char** argv) {
   packlab::cli::add_convert(app);
   packlab::cli::add_relax(app);
   // Further subcommands register here, one line each (their files are in src/packlab/cli/).
+  // CLI11 says only "A subcommand is required" for a misspelt one: name it and list the known.
+  if (argc > 1 && argv[1][0] != '-') {
+    std::string known;
+    bool found = false;
+    for (const CLI::App* sub : app.get_subcommands([](CLI::App*) { return true; })) {
+      found = found || sub->get_name() == argv[1];
+      known += (known.empty() ? "" : ", ") + sub->get_name();
+    }
+    if (!found) {
+      std::fprintf(stderr, "packlab: error: unknown subcommand '%s': must be one of %s\n", argv[1], known.c_str());
+      return 2;
+    }
+  }
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
