@@ -194,28 +194,28 @@ template <class Law, bool Measure>
 void Engine::pair_forces(ContactModel<Law>& model, Totals& totals) {
   const int n = static_cast<int>(particles_.size());
   const int T = threads_;
-  const Vec3* x = particles_.position.data();
-  const Vec3* v = particles_.velocity.data();
-  const Vec3* w = particles_.angular_velocity.data();
-  const double* rad = particles_.radius.data();
-  const int* type = particles_.type.data();
-  const int* first = neighbors_.first_pairs().data();
-  const int* partner = neighbors_.partner().data();
-  const std::uint8_t* image = neighbors_.image().data();
+  const Vec3* __restrict x = particles_.position.data();
+  const Vec3* __restrict v = particles_.velocity.data();
+  const Vec3* __restrict w = particles_.angular_velocity.data();
+  const double* __restrict rad = particles_.radius.data();
+  const int* __restrict type = particles_.type.data();
+  const int* __restrict first = neighbors_.first_pairs().data();
+  const int* __restrict partner = neighbors_.partner().data();
+  const std::uint8_t* __restrict image = neighbors_.image().data();
   const int pair_total = first[n];
   const double dt = dt_;
   const int type_count = model.type_count;
-  const auto* params = model.pair_params.data();
-  const double* inverse_mass = particles_.inverse_mass.data();
-  auto* history = model.history.data();
+  const auto* __restrict params = model.pair_params.data();
+  const double* __restrict inverse_mass = particles_.inverse_mass.data();
+  auto* __restrict history = model.history.data();
   std::array<Vec3, 27> offsets;  // local copy: the force stores below cannot alias it
   for (int c = 0; c < 27; ++c) offsets[c] = neighbors_.image_offset(c);
 
 #pragma omp parallel num_threads(T)
   {
     const int t = omp_get_thread_num();
-    Vec3* force;
-    Vec3* torque;
+    Vec3* __restrict force;
+    Vec3* __restrict torque;
     if (T == 1) {
       force = particles_.force.data();
       torque = particles_.torque.data();
@@ -228,43 +228,56 @@ void Engine::pair_forces(ContactModel<Law>& model, Totals& totals) {
     std::fill(force, force + n, Vec3{});
     std::fill(torque, torque + n, Vec3{});
     Totals local;
-    // Contiguous ranges of particles holding about equal numbers of pairs.
-    const long pair_begin = static_cast<long>(pair_total) * t / T;
-    const long pair_end = static_cast<long>(pair_total) * (t + 1) / T;
-    int i = static_cast<int>(std::upper_bound(first, first + n + 1, static_cast<int>(pair_begin)) - first) - 1;
-    for (long p = pair_begin; p < pair_end; ++p) {
-      while (first[i + 1] <= p) ++i;
-      const int j = partner[p];
-      const Vec3 d = x[j] + offsets[image[p]] - x[i];
-      const double dist2 = norm2(d);
-      const double rsum = rad[i] + rad[j];
-      if (dist2 >= rsum * rsum) {
-        history[p] = typename Law::History{};  // contact lost: its history ends
-        continue;
+    // Contiguous ranges of particles holding about equal numbers of pairs; each particle's
+    // pairs belong to one thread, so its own force is summed in registers.
+    auto first_particle = [&](int thread) {
+      return static_cast<int>(std::lower_bound(first, first + n, static_cast<int>(static_cast<long>(pair_total) *
+                                                                                   thread / T)) -
+                              first);
+    };
+    const int i_begin = first_particle(t);
+    const int i_end = t + 1 == T ? n : first_particle(t + 1);
+    for (int i = i_begin; i < i_end; ++i) {
+      const Vec3 xi = x[i], vi = v[i], wi = w[i];
+      const double ri = rad[i];
+      const double inverse_mass_i = inverse_mass[i];
+      const auto* params_i = params + type[i] * type_count;
+      Vec3 force_i{}, torque_i{};
+      for (int p = first[i]; p < first[i + 1]; ++p) {
+        const int j = partner[p];
+        const Vec3 d = x[j] + offsets[image[p]] - xi;
+        const double dist2 = norm2(d);
+        const double rsum = ri + rad[j];
+        if (dist2 >= rsum * rsum) {
+          history[p] = typename Law::History{};  // contact lost: its history ends
+          continue;
+        }
+        const double dist = std::sqrt(dist2);
+        ContactGeometry g;
+        g.normal = d * (1.0 / dist);
+        g.overlap = rsum - dist;
+        g.branch_i = ri - 0.5 * g.overlap;
+        g.branch_j = rad[j] - 0.5 * g.overlap;
+        g.relative_velocity = v[j] - vi - cross(g.branch_j * w[j] + g.branch_i * wi, g.normal);
+        g.mean_spin = 0.5 * (wi + w[j]);
+        g.dt = dt;
+        const auto& pair_params = params_i[type[j]];
+        const PairForce f = Law::evaluate(g, pair_params, history[p]);
+        local.max_stiffness_over_mass = std::max(
+            local.max_stiffness_over_mass, Law::stiffness(pair_params) * std::max(inverse_mass_i, inverse_mass[j]));
+        force_i -= f.force_on_j;
+        force[j] += f.force_on_j;
+        torque_i += f.torque_i;
+        torque[j] += f.torque_j;
+        if constexpr (Measure) {
+          ++local.contacts;
+          local.contact_force_sum += norm(f.force_on_j);
+          local.strain_energy += f.energy;
+          local.max_overlap_ratio = std::max(local.max_overlap_ratio, g.overlap / rsum);
+        }
       }
-      const double dist = std::sqrt(dist2);
-      ContactGeometry g;
-      g.normal = d * (1.0 / dist);
-      g.overlap = rsum - dist;
-      g.branch_i = rad[i] - 0.5 * g.overlap;
-      g.branch_j = rad[j] - 0.5 * g.overlap;
-      g.relative_velocity = v[j] - v[i] - cross(g.branch_j * w[j] + g.branch_i * w[i], g.normal);
-      g.mean_spin = 0.5 * (w[i] + w[j]);
-      g.dt = dt;
-      const auto& pair_params = params[type[i] * type_count + type[j]];
-      const PairForce f = Law::evaluate(g, pair_params, history[p]);
-      local.max_stiffness_over_mass = std::max(
-          local.max_stiffness_over_mass, Law::stiffness(pair_params) * std::max(inverse_mass[i], inverse_mass[j]));
-      force[i] -= f.force_on_j;
-      force[j] += f.force_on_j;
-      torque[i] += f.torque_i;
-      torque[j] += f.torque_j;
-      if constexpr (Measure) {
-        ++local.contacts;
-        local.contact_force_sum += norm(f.force_on_j);
-        local.strain_energy += f.energy;
-        local.max_overlap_ratio = std::max(local.max_overlap_ratio, g.overlap / rsum);
-      }
+      force[i] += force_i;
+      torque[i] += torque_i;
     }
     thread_totals_[t] = local;
 #pragma omp barrier
@@ -303,18 +316,21 @@ void Engine::integrate(Totals& totals) {
   long free_count = 0;
 #pragma omp parallel for num_threads(threads_) schedule(static) reduction(+ : kinetic, unbalanced, free_count)
   for (int i = 0; i < n; ++i) {
-    if (P.fixed[i]) continue;
+    // Fixed particles have zero inverse mass and inertia: they keep zero velocity without a
+    // branch, so the loop vectorizes.
     const double alpha = damping_[i];
-    const Vec3 f = alpha > 0.0 ? apply_local_damping(P.force[i], P.velocity[i], alpha) : P.force[i];
-    const Vec3 m = alpha > 0.0 ? apply_local_damping(P.torque[i], P.angular_velocity[i], alpha) : P.torque[i];
+    const Vec3 f = apply_local_damping(P.force[i], P.velocity[i], alpha);
+    const Vec3 m = apply_local_damping(P.torque[i], P.angular_velocity[i], alpha);
     const Vec3 dv = (P.inverse_mass[i] * dt) * f;
     const Vec3 dw = (P.inverse_inertia[i] * dt) * m;
     if constexpr (Measure) {
-      const Vec3 v_sync = P.velocity[i] + 0.5 * dv;
-      const Vec3 w_sync = P.angular_velocity[i] + 0.5 * dw;
-      kinetic += 0.5 * (P.mass[i] * norm2(v_sync) + P.inertia[i] * norm2(w_sync));
-      unbalanced += norm(P.force[i]);
-      ++free_count;
+      if (!P.fixed[i]) {
+        const Vec3 v_sync = P.velocity[i] + 0.5 * dv;
+        const Vec3 w_sync = P.angular_velocity[i] + 0.5 * dw;
+        kinetic += 0.5 * (P.mass[i] * norm2(v_sync) + P.inertia[i] * norm2(w_sync));
+        unbalanced += norm(P.force[i]);
+        ++free_count;
+      }
     }
     P.velocity[i] += dv;
     P.angular_velocity[i] += dw;
