@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <chrono>
+#include <filesystem>
 #include <memory>
 #include <sstream>
 
@@ -12,6 +13,7 @@
 #include "packlab/dem/relax.hpp"
 #include "packlab/io/atomic_file.hpp"
 #include "packlab/io/packing_io.hpp"
+#include "packlab/io/plot.hpp"
 
 namespace packlab::cli {
 
@@ -28,6 +30,7 @@ void add_relax(CLI::App& app) {
     int threads = 0;
     std::uint64_t seed = 1;
     bool quiet = false;
+    bool no_plots = false;
   };
   auto opt = std::make_shared<Options>();
   auto* cmd = app.add_subcommand(
@@ -60,7 +63,9 @@ void add_relax(CLI::App& app) {
   cmd->add_option("--threads", opt->threads, "OpenMP threads (0 = all cores)")->capture_default_str();
   cmd->add_option("--seed", opt->seed, "Accepted for uniformity; relax draws no random numbers")
       ->capture_default_str();
-  cmd->add_option("--log", opt->log, "Write the diagnostics of every check to this CSV file");
+  cmd->add_option("--log", opt->log,
+                  "Write the diagnostics of every check to this CSV file (and a plot beside it, .png)");
+  cmd->add_flag("--no-plots", opt->no_plots, "Do not draw the PNG plot of the log");
   cmd->add_flag("--quiet", opt->quiet, "No progress output");
   cmd->callback([opt] {
     const auto t0 = std::chrono::steady_clock::now();
@@ -97,6 +102,9 @@ void add_relax(CLI::App& app) {
         csv << fmt::format("{},{:.17g},{:.17g},{:.17g},{:.17g},{:.17g},{}\n", d.step, d.time, d.kinetic_energy,
                            d.strain_energy, d.unbalanced_force_ratio, d.mean_coordination, d.contacts);
       io::write_text_atomically(opt->log, csv.str());
+      io::PlotOptions plot;
+      plot.enabled = !opt->no_plots;
+      io::make_plot("relax", {opt->log}, std::filesystem::path(opt->log).replace_extension(".png"), plot);
     }
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     if (!opt->quiet) {
