@@ -64,7 +64,7 @@ CellGrid make_grid(const Box& box, const std::vector<Vec3>& position, double ran
 }  // namespace
 
 void NeighborList::build(const Box& box, std::vector<Vec3>& position, const std::vector<double>& radius,
-                         int threads) {
+                         int threads, std::vector<std::array<int, 3>>* wraps) {
   const int n = static_cast<int>(position.size());
   double r_max = 0.0;
   for (double r : radius) r_max = std::max(r_max, r);
@@ -74,7 +74,12 @@ void NeighborList::build(const Box& box, std::vector<Vec3>& position, const std:
       fail_input(fmt::format(
           "periodic box edge along {} = {:g} m is shorter than the interaction range 2*r_max + skin = {:g} m",
           "xyz"[a], box.length[a], range));
-  for (auto& p : position) p = box.wrap(p);
+  if (wraps) {
+    wraps->resize(position.size(), {0, 0, 0});
+    for (std::size_t k = 0; k < position.size(); ++k) position[k] = box.wrap(position[k], &(*wraps)[k]);
+  } else {
+    for (auto& p : position) p = box.wrap(p);
+  }
   for (int c = 0; c < 27; ++c) offsets_[c] = box.shift_vector(image_of_code(c));
 
   const CellGrid grid = make_grid(box, position, range);

@@ -35,8 +35,10 @@ class NeighborList {
   // Wraps `position` into the box along periodic axes and rebuilds. Throws InputError if a
   // periodic box edge is shorter than the largest interaction range (2 r_max + skin).
   // `threads` > 0 builds in parallel; the result does not depend on the thread count.
+  // `wraps` (optional, one entry per particle) accumulates the box lengths each particle was
+  // wrapped by, so callers can keep unwrapped trajectories and bond images.
   void build(const Box& box, std::vector<Vec3>& position, const std::vector<double>& radius,
-             int threads = 1);
+             int threads = 1, std::vector<std::array<int, 3>>* wraps = nullptr);
 
   // True when some pair may have come within contact range without being listed.
   bool needs_rebuild(const std::vector<Vec3>& position, const std::vector<double>& radius) const;

@@ -91,6 +91,48 @@ Engine::Engine(const Packing& packing, const EngineConfig& config) : packing_(pa
   }
 
   model_ = make_models(config_.contact_law, config_.types, type_count, config_.stiffness_rule);
+
+  // Bonds, mapped to the engine's particle order.
+  wraps_.assign(n, {0, 0, 0});
+  {
+    std::vector<int> internal(n);
+    for (std::size_t k = 0; k < n; ++k) internal[static_cast<std::size_t>(original_index_[k])] = static_cast<int>(k);
+    const Bonds& in = packing_.bonds;
+    bool any_intact = false;
+    for (std::size_t b = 0; b < in.size(); ++b) {
+      bonds_.i.push_back(internal[static_cast<std::size_t>(in.i[b])]);
+      bonds_.j.push_back(internal[static_cast<std::size_t>(in.j[b])]);
+      bonds_.image.push_back(in.image[b]);
+      bonds_.material.push_back(in.material[b]);
+      bonds_.rest_length.push_back(in.rest_length[b]);
+      bonds_.state.push_back(in.state[b] == 0 ? 0 : 1);
+      bonds_.history.push_back(ContactBond::State{});
+      bonds_.pair.push_back(-1);
+      any_intact = any_intact || in.state[b] == 0;
+      if (in.state[b] != 0) ++broken_bonds_;
+    }
+    if (any_intact) {
+      if (config_.bond_law != ContactBond::name)
+        fail_input(fmt::format("bond_law = {}: must be '{}'", config_.bond_law, ContactBond::name));
+      if (config_.bond_materials.empty())
+        fail_input("the packing has bonds but no bond parameters were given (bond_materials)");
+      for (std::size_t m = 0; m < config_.bond_materials.size(); ++m) {
+        const auto& bp = config_.bond_materials[m];
+        const std::string key = fmt::format("bond material {} ", m);
+        require(bp.normal_stiffness > 0.0 && std::isfinite(bp.normal_stiffness), key + "normal_stiffness",
+                bp.normal_stiffness, "> 0 N/m");
+        require(bp.shear_stiffness >= 0.0 && std::isfinite(bp.shear_stiffness), key + "shear_stiffness",
+                bp.shear_stiffness, ">= 0 N/m");
+        require(bp.normal_strength >= 0.0, key + "normal_strength", bp.normal_strength, ">= 0 N (inf: never)");
+        require(bp.shear_strength >= 0.0, key + "shear_strength", bp.shear_strength, ">= 0 N (inf: never)");
+      }
+      for (std::size_t b = 0; b < in.size(); ++b)
+        if (config_.bond_materials.size() > 1 &&
+            (in.material[b] < 0 || static_cast<std::size_t>(in.material[b]) >= config_.bond_materials.size()))
+          fail_input(fmt::format("bond {} has material {}: parameters were given for materials 0..{}", b,
+                                 in.material[b], config_.bond_materials.size() - 1));
+    }
+  }
   threads_ = config_.threads > 0 ? config_.threads : omp_get_max_threads();
   thread_force_.assign(threads_, {});
   thread_torque_.assign(threads_, {});
@@ -124,6 +166,14 @@ double Engine::critical_time_step() const {
         }
       },
       model_);
+  for (std::size_t b = 0; b < bonds_.i.size(); ++b) {
+    if (bonds_.state[b] != 0) continue;
+    const auto& bp = config_.bond_materials.size() == 1 ? config_.bond_materials[0]
+                                                         : config_.bond_materials[bonds_.material[b]];
+    const double m = std::min(particles_.fixed[bonds_.i[b]] ? std::numeric_limits<double>::infinity() : particles_.mass[bonds_.i[b]],
+                              particles_.fixed[bonds_.j[b]] ? std::numeric_limits<double>::infinity() : particles_.mass[bonds_.j[b]]);
+    if (std::isfinite(m)) dt = std::min(dt, std::sqrt(m / ContactBond::stiffness(bp)));
+  }
   return config_.time_step_safety * dt;
 }
 
@@ -176,7 +226,7 @@ void Engine::set_time_step(double dt) {
 }
 
 void Engine::refresh_neighbors() {
-  neighbors_.build(packing_.box, particles_.position, particles_.radius, threads_);
+  neighbors_.build(packing_.box, particles_.position, particles_.radius, threads_, &wraps_);
   std::visit(
       [&](auto& model) {
         using History = typename std::decay_t<decltype(model.law)>::History;
@@ -188,6 +238,89 @@ void Engine::refresh_neighbors() {
         model.history.swap(remapped);
       },
       model_);
+  mark_bonded_pairs();
+}
+
+std::array<int, 3> Engine::bond_image_now(std::size_t b) const {
+  const auto& wi = wraps_[static_cast<std::size_t>(bonds_.i[b])];
+  const auto& wj = wraps_[static_cast<std::size_t>(bonds_.j[b])];
+  return {bonds_.image[b][0] + wj[0] - wi[0], bonds_.image[b][1] + wj[1] - wi[1], bonds_.image[b][2] + wj[2] - wi[2]};
+}
+
+void Engine::mark_bonded_pairs() {
+  pair_bonded_.assign(neighbors_.pair_count(), 0);
+  const auto& partner = neighbors_.partner();
+  const auto& image = neighbors_.image();
+  for (std::size_t b = 0; b < bonds_.i.size(); ++b) {
+    bonds_.pair[b] = -1;
+    if (bonds_.state[b] != 0) continue;
+    auto s = bond_image_now(b);
+    int i = bonds_.i[b], j = bonds_.j[b];
+    if (j < i) {
+      std::swap(i, j);
+      s = {-s[0], -s[1], -s[2]};
+    }
+    if (std::abs(s[0]) > 1 || std::abs(s[1]) > 1 || std::abs(s[2]) > 1) continue;  // out of range
+    const int code = image_code(s[0], s[1], s[2]);
+    for (int p = neighbors_.first(i); p < neighbors_.first(i + 1); ++p)
+      if (partner[p] == j && image[p] == code) {
+        bonds_.pair[b] = p;
+        pair_bonded_[p] = 1;
+      }
+  }
+}
+
+std::size_t Engine::intact_bonds() const {
+  std::size_t count = 0;
+  for (int st : bonds_.state) count += st == 0;
+  return count;
+}
+
+template <bool Measure>
+void Engine::bond_forces(int thread, Vec3* force, Vec3* torque, Totals& local) {
+  const std::size_t nb = bonds_.i.size();
+  const std::size_t begin = nb * thread / threads_, end = nb * (thread + 1) / threads_;
+  const auto& P = particles_;
+  const Box& box = packing_.box;
+  for (std::size_t b = begin; b < end; ++b) {
+    if (bonds_.state[b] != 0) continue;
+    const int i = bonds_.i[b], j = bonds_.j[b];
+    const Vec3 d = P.position[j] + box.shift_vector(bond_image_now(b)) - P.position[i];
+    const double dist = norm(d);
+    if (!(dist > 0.0)) continue;  // coincident centres: no direction to act along
+    ContactGeometry g;
+    g.normal = d * (1.0 / dist);
+    g.overlap = P.radius[i] + P.radius[j] - dist;
+    g.branch_i = P.radius[i] - 0.5 * g.overlap;
+    g.branch_j = P.radius[j] - 0.5 * g.overlap;
+    g.relative_velocity = P.velocity[j] - P.velocity[i] -
+                          cross(g.branch_j * P.angular_velocity[j] + g.branch_i * P.angular_velocity[i], g.normal);
+    g.mean_spin = 0.5 * (P.angular_velocity[i] + P.angular_velocity[j]);
+    g.dt = dt_;
+    const auto& params = config_.bond_materials.size() == 1 ? config_.bond_materials[0]
+                                                             : config_.bond_materials[bonds_.material[b]];
+    const BondForce f = ContactBond::evaluate(g, params, bonds_.history[b]);
+    if (f.broken) {
+      bonds_.state[b] = 1;
+      // The pair interacts through the contact law from the next step on. Only this thread
+      // touches bond b and its pair.
+      if (bonds_.pair[b] >= 0) pair_bonded_[static_cast<std::size_t>(bonds_.pair[b])] = 0;
+      ++local.bond_breaks;
+      continue;
+    }
+    force[i] -= f.force_on_j;
+    force[j] += f.force_on_j;
+    torque[i] += f.torque_i;
+    torque[j] += f.torque_j;
+    local.max_stiffness_over_mass =
+        std::max(local.max_stiffness_over_mass,
+                 ContactBond::stiffness(params) * std::max(P.inverse_mass[i], P.inverse_mass[j]));
+    if constexpr (Measure) {
+      local.contact_force_sum += norm(f.force_on_j);
+      ++local.contacts;
+      local.strain_energy += f.energy;
+    }
+  }
 }
 
 template <class Law, bool Measure>
@@ -208,6 +341,8 @@ void Engine::pair_forces(ContactModel<Law>& model, Totals& totals) {
   const auto* __restrict params = model.pair_params.data();
   const double* __restrict inverse_mass = particles_.inverse_mass.data();
   auto* __restrict history = model.history.data();
+  const std::uint8_t* __restrict bonded = pair_bonded_.data();
+  const bool any_bonded = !bonds_.i.empty();
   std::array<Vec3, 27> offsets;  // local copy: the force stores below cannot alias it
   for (int c = 0; c < 27; ++c) offsets[c] = neighbors_.image_offset(c);
 
@@ -248,8 +383,9 @@ void Engine::pair_forces(ContactModel<Law>& model, Totals& totals) {
         const Vec3 d = x[j] + offsets[image[p]] - xi;
         const double dist2 = norm2(d);
         const double rsum = ri + rad[j];
-        if (dist2 >= rsum * rsum) {
-          history[p] = typename Law::History{};  // contact lost: its history ends
+        if (dist2 >= rsum * rsum || (any_bonded && bonded[p])) {
+          // Not touching (its history ends), or bonded (the bond law acts instead).
+          history[p] = typename Law::History{};
           continue;
         }
         const double dist = std::sqrt(dist2);
@@ -279,6 +415,7 @@ void Engine::pair_forces(ContactModel<Law>& model, Totals& totals) {
       force[i] += force_i;
       torque[i] += torque_i;
     }
+    if (any_bonded) bond_forces<Measure>(t, force, torque, local);
     thread_totals_[t] = local;
 #pragma omp barrier
     if (T > 1) {
@@ -295,8 +432,11 @@ void Engine::pair_forces(ContactModel<Law>& model, Totals& totals) {
       }
     }
   }
-  for (int t = 0; t < T; ++t)
+  for (int t = 0; t < T; ++t) {
     totals.max_stiffness_over_mass = std::max(totals.max_stiffness_over_mass, thread_totals_[t].max_stiffness_over_mass);
+    totals.bond_breaks += thread_totals_[t].bond_breaks;
+  }
+  broken_bonds_ += totals.bond_breaks;
   if constexpr (Measure) {
     for (int t = 0; t < T; ++t) {
       totals.contacts += thread_totals_[t].contacts;
@@ -375,6 +515,8 @@ Diagnostics Engine::step_measured() {
   d.max_overlap_ratio = t.max_overlap_ratio;
   const std::size_t n = particles_.size();
   d.mean_coordination = n ? 2.0 * static_cast<double>(t.contacts) / static_cast<double>(n) : 0.0;
+  d.intact_bonds = intact_bonds();
+  d.broken_bonds = broken_bonds_;
   if (t.contacts > 0 && t.free_particles > 0 && t.contact_force_sum > 0.0)
     d.unbalanced_force_ratio = (t.unbalanced_force_sum / static_cast<double>(t.free_particles)) /
                                (t.contact_force_sum / static_cast<double>(t.contacts));
@@ -404,6 +546,10 @@ void Engine::save_state(std::ostream& out) const {
   binary::write_vector(out, density_);
   binary::write_vector(out, damping_);
   binary::write_vector(out, original_index_);
+  binary::write_vector(out, wraps_);
+  binary::write_vector(out, bonds_.state);
+  binary::write_vector(out, bonds_.history);
+  binary::write(out, static_cast<std::uint64_t>(broken_bonds_));
   neighbors_.save(out);
   std::visit([&](const auto& model) { binary::write_vector(out, model.history); }, model_);
 }
@@ -432,6 +578,18 @@ void Engine::load_state(std::istream& in) {
   binary::read_vector(in, density_, "densities");
   binary::read_vector(in, damping_, "damping");
   binary::read_vector(in, original_index_, "particle order");
+  binary::read_vector(in, wraps_, "periodic images");
+  std::vector<int> bond_state;
+  std::vector<ContactBond::State> bond_history;
+  binary::read_vector(in, bond_state, "bond states");
+  binary::read_vector(in, bond_history, "bond histories");
+  std::uint64_t broken = 0;
+  binary::read(in, broken, "broken bond count");
+  if (wraps_.size() != n || bond_state.size() != bonds_.i.size() || bond_history.size() != bonds_.i.size())
+    fail_input("checkpoint does not match this packing's particles and bonds");
+  bonds_.state = std::move(bond_state);
+  bonds_.history = std::move(bond_history);
+  broken_bonds_ = broken;
   for (auto* v : {&P.position, &P.velocity, &P.angular_velocity, &P.force, &P.torque})
     if (v->size() != n) fail_input("checkpoint is damaged: array sizes differ");
   if (P.radius.size() != n || P.type.size() != n || P.fixed.size() != n || density_.size() != n ||
@@ -443,6 +601,7 @@ void Engine::load_state(std::istream& in) {
   if (neighbors_.particle_count() != n || std::visit([&](auto& m) { return m.history.size(); }, model_) !=
                                               neighbors_.pair_count())
     fail_input("checkpoint is damaged: contact histories do not match the neighbour list");
+  mark_bonded_pairs();
 }
 
 Packing Engine::packing() const {
@@ -450,12 +609,20 @@ Packing Engine::packing() const {
   const std::size_t n = particles_.size();
   out.velocity.resize(n);
   out.angular_velocity.resize(n);
+  // Total wraps since the input of each particle as written (internal wraps + this wrap).
+  std::vector<std::array<int, 3>> total_wraps(wraps_);
   for (std::size_t k = 0; k < n; ++k) {
     const std::size_t i = static_cast<std::size_t>(original_index_[k]);
-    out.position[i] = out.box.wrap(particles_.position[k]);
+    out.position[i] = out.box.wrap(particles_.position[k], &total_wraps[k]);
     out.radius[i] = particles_.radius[k];
     out.velocity[i] = particles_.velocity[k];
     out.angular_velocity[i] = particles_.angular_velocity[k];
+  }
+  for (std::size_t b = 0; b < bonds_.i.size(); ++b) {
+    const auto& wi = total_wraps[static_cast<std::size_t>(bonds_.i[b])];
+    const auto& wj = total_wraps[static_cast<std::size_t>(bonds_.j[b])];
+    for (int a = 0; a < 3; ++a) out.bonds.image[b][a] = bonds_.image[b][a] + wj[a] - wi[a];
+    out.bonds.state[b] = bonds_.state[b];
   }
   return out;
 }

@@ -12,6 +12,7 @@
 // (per-thread force buffers summed in thread order).
 #pragma once
 
+#include <array>
 #include <cstddef>
 #include <istream>
 #include <ostream>
@@ -22,6 +23,7 @@
 #include "packlab/core/neighbor_list.hpp"
 #include "packlab/core/packing.hpp"
 #include "packlab/core/particle_store.hpp"
+#include "packlab/dem/bond_law.hpp"
 #include "packlab/dem/contact_law.hpp"
 #include "packlab/dem/material.hpp"
 
@@ -50,6 +52,10 @@ struct EngineConfig {
   // (the step the heaviest particle needs), used while nothing touches.
   double max_time_step = 0.0;
   double skin_ratio = 0.2;         // Verlet skin as a fraction of the largest radius [-]
+  // Bonds of the packing's bond list: parameters per bond material (a single entry applies to
+  // every material). Required when the packing has intact bonds.
+  std::string bond_law = "contact";
+  std::vector<ContactBond::Params> bond_materials;
   int threads = 0;                 // 0 = OpenMP default
 };
 
@@ -65,6 +71,8 @@ struct Diagnostics {
   double mean_coordination = 0.0;      // 2 contacts / particles
   std::size_t contacts = 0;            // touching pairs (overlap > 0)
   double max_overlap_ratio = 0.0;      // max overlap / (r_i + r_j)
+  std::size_t intact_bonds = 0;
+  std::size_t broken_bonds = 0;        // broken so far (including those broken in the file)
 };
 
 template <class Law>
@@ -108,6 +116,7 @@ class Engine {
   double time() const { return time_; }
   int threads() const { return threads_; }
   long neighbor_builds() const { return neighbors_.builds(); }
+  std::size_t intact_bonds() const;
   std::size_t particle_count() const { return particles_.size(); }
 
   // Particle arrays in the engine's internal order: sorted along a space-filling curve for
@@ -132,6 +141,17 @@ class Engine {
     double unbalanced_force_sum = 0.0;
     std::size_t free_particles = 0;
     double max_stiffness_over_mass = 0.0;  // over touching pairs, for the contacts rule
+    std::size_t bond_breaks = 0;           // bonds that failed this step
+  };
+  // Bonds in the engine's particle order; `image` is relative to the input frame (see wraps_).
+  struct BondList {
+    std::vector<int> i, j;
+    std::vector<std::array<int, 3>> image;
+    std::vector<int> material;
+    std::vector<double> rest_length;
+    std::vector<int> state;                      // 0 intact, 1 broken
+    std::vector<ContactBond::State> history;
+    std::vector<int> pair;                       // index in the neighbour list, or -1
   };
   template <bool Measure>
   Totals step_impl();
@@ -140,6 +160,10 @@ class Engine {
   template <bool Measure>
   void integrate(Totals& totals);
   void refresh_neighbors();
+  void mark_bonded_pairs();
+  template <bool Measure>
+  void bond_forces(int thread, Vec3* force, Vec3* torque, Totals& local);
+  std::array<int, 3> bond_image_now(std::size_t b) const;
   void update_mass(std::size_t k);
   double heaviest_particle_time_step() const;
   const TypeParams& params_of_type(int type) const;
@@ -150,6 +174,11 @@ class Engine {
   std::vector<double> damping_;  // per particle alpha
   std::vector<int> original_index_;
   std::vector<double> density_;  // per particle [kg/m^3]
+  // Box lengths each particle was wrapped by since the input: unwrapped = position + wraps L.
+  std::vector<std::array<int, 3>> wraps_;
+  BondList bonds_;
+  std::vector<std::uint8_t> pair_bonded_;  // per neighbour pair: the contact law is off
+  std::size_t broken_bonds_ = 0;
   NeighborList neighbors_;
   ContactModels model_;
   std::vector<std::vector<Vec3>> thread_force_, thread_torque_;
