@@ -16,7 +16,7 @@
 
 namespace packlab::dem {
 
-std::vector<std::string> contact_law_names() { return {LinearContact::name}; }
+std::vector<std::string> contact_law_names() { return {LinearContact::name, HertzMindlin::name}; }
 
 TimeStepRule time_step_rule_from_name(const std::string& name) {
   if (name == "global") return TimeStepRule::global;
@@ -42,6 +42,19 @@ ContactModel<Law> make_model(const std::vector<TypeParams>& types, int type_coun
 ContactModels make_models(const std::string& name, const std::vector<TypeParams>& types, int type_count,
                           StiffnessRule rule) {
   if (name == LinearContact::name) return make_model<LinearContact>(types, type_count, rule);
+  if (name == HertzMindlin::name) {
+    for (std::size_t t = 0; t < types.size(); ++t) {
+      const std::string key = fmt::format("type {} ", t);
+      require(types[t].youngs_modulus > 0.0 && std::isfinite(types[t].youngs_modulus), key + "youngs_modulus",
+              types[t].youngs_modulus, "> 0 Pa for hertz_mindlin");
+      require(types[t].poisson_ratio > -1.0 && types[t].poisson_ratio < 0.5, key + "poisson_ratio",
+              types[t].poisson_ratio, "in (-1, 0.5)");
+      require(types[t].restitution > 0.0 && types[t].restitution <= 1.0, key + "restitution", types[t].restitution,
+              "in (0, 1]");
+      require(types[t].rolling_friction >= 0.0, key + "rolling_friction", types[t].rolling_friction, ">= 0");
+    }
+    return make_model<HertzMindlin>(types, type_count, rule);
+  }
   fail_input(fmt::format("contact_law = {}: must be one of: {}", name, fmt::join(contact_law_names(), ", ")));
 }
 
@@ -161,7 +174,7 @@ double Engine::critical_time_step() const {
         for (std::size_t i = 0; i < particles_.size(); ++i) {
           if (particles_.fixed[i]) continue;
           const int t = particles_.type[i];
-          const double k = Law::stiffness(model.pair_params[t * model.type_count + t]);
+          const double k = Law::stiffness(model.pair_params[t * model.type_count + t], particles_.radius[i]);
           if (k > 0.0) dt = std::min(dt, std::sqrt(particles_.mass[i] / k));
         }
       },
@@ -192,7 +205,7 @@ double Engine::heaviest_particle_time_step() const {
         using Law = std::decay_t<decltype(model.law)>;
         for (std::size_t i = 0; i < particles_.size(); ++i) {
           const int t = particles_.type[i];
-          const double k = Law::stiffness(model.pair_params[t * model.type_count + t]);
+          const double k = Law::stiffness(model.pair_params[t * model.type_count + t], particles_.radius[i]);
           if (k > 0.0) dt = std::max(dt, std::sqrt(particles_.mass[i] / k));
         }
       },
@@ -397,10 +410,16 @@ void Engine::pair_forces(ContactModel<Law>& model, Totals& totals) {
         g.relative_velocity = v[j] - vi - cross(g.branch_j * w[j] + g.branch_i * wi, g.normal);
         g.mean_spin = 0.5 * (wi + w[j]);
         g.dt = dt;
+        // Unused by laws that do not need them (the compiler drops the loads).
+        g.radius_i = ri;
+        g.radius_j = rad[j];
+        g.effective_mass = 1.0 / (inverse_mass_i + inverse_mass[j]);
+        g.spin_i = wi;
+        g.spin_j = w[j];
         const auto& pair_params = params_i[type[j]];
         const PairForce f = Law::evaluate(g, pair_params, history[p]);
-        local.max_stiffness_over_mass = std::max(
-            local.max_stiffness_over_mass, Law::stiffness(pair_params) * std::max(inverse_mass_i, inverse_mass[j]));
+        local.max_stiffness_over_mass =
+            std::max(local.max_stiffness_over_mass, f.stiffness * std::max(inverse_mass_i, inverse_mass[j]));
         force_i -= f.force_on_j;
         force[j] += f.force_on_j;
         torque_i += f.torque_i;

@@ -83,7 +83,7 @@ struct ContactModel {
   std::vector<typename Law::History> history;     // parallel to the neighbour list
 };
 
-using ContactModels = std::variant<ContactModel<LinearContact>>;
+using ContactModels = std::variant<ContactModel<LinearContact>, ContactModel<HertzMindlin>>;
 
 class Engine {
  public:

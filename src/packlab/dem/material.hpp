@@ -13,6 +13,11 @@ struct TypeParams {
   double friction = 0.0;            // Coulomb coefficient mu [-]
   double density = 1.0e3;           // [kg/m^3] (used when the packing has none per particle)
   double damping = 0.7;             // local damping coefficient alpha [-], 0 <= alpha < 1
+  // Hertz-Mindlin contacts (bpm-inverse-opals eq. 5-10) only:
+  double youngs_modulus = 0.0;      // E [Pa]
+  double poisson_ratio = 0.25;      // nu [-]
+  double restitution = 1.0;         // e [-], 0 < e <= 1
+  double rolling_friction = 0.0;    // mu_r [-]
 };
 
 // How the stiffnesses of two particles make the stiffness of their contact.
