@@ -8,6 +8,7 @@
 #include <cmath>
 #include <limits>
 #include <numbers>
+#include <type_traits>
 
 #include "packlab/core/binary_io.hpp"
 #include "packlab/core/error.hpp"
@@ -150,6 +151,7 @@ Engine::Engine(const Packing& packing, const EngineConfig& config) : packing_(pa
   thread_force_.assign(threads_, {});
   thread_torque_.assign(threads_, {});
   thread_totals_.assign(threads_, {});
+  thread_wall_force_.assign(threads_, {});
 
   neighbors_.set_skin(config_.skin_ratio * r_max);
   if (config_.time_step > 0.0)
@@ -280,6 +282,74 @@ void Engine::mark_bonded_pairs() {
         bonds_.pair[b] = p;
         pair_bonded_[p] = 1;
       }
+  }
+}
+
+std::size_t Engine::add_wall(const Wall& wall) {
+  const double length = norm(wall.normal);
+  if (!(length > 0.0) || !std::isfinite(length)) fail_input("wall normal: must be a nonzero finite vector");
+  for (int a = 0; a < 3; ++a)
+    if (!std::isfinite(wall.point[a]) || !std::isfinite(wall.velocity[a]))
+      fail_input("wall point and velocity: must be finite");
+  static_assert(std::is_same_v<LinearContact::History, Vec3> && std::is_same_v<HertzMindlin::History, Vec3>,
+                "wall contacts keep a Vec3 history per particle");
+  Wall w = wall;
+  w.normal *= 1.0 / length;
+  // Re-layout the per-particle wall histories for one more wall.
+  const std::size_t n = particles_.size(), walls = walls_.size();
+  std::vector<Vec3> history(n * (walls + 1));
+  for (std::size_t k = 0; k < n; ++k)
+    for (std::size_t m = 0; m < walls; ++m) history[k * (walls + 1) + m] = wall_history_[k * walls + m];
+  wall_history_.swap(history);
+  walls_.push_back(w);
+  wall_force_.push_back(Vec3{});
+  return walls_.size() - 1;
+}
+
+template <class Law, bool Measure>
+void Engine::wall_forces(ContactModel<Law>& model, int thread, Vec3* force, Vec3* torque, Totals& local) {
+  const std::size_t n = particles_.size(), walls = walls_.size();
+  const std::size_t begin = n * thread / threads_, end = n * (thread + 1) / threads_;
+  auto& wall_force = thread_wall_force_[thread];
+  wall_force.assign(walls, Vec3{});
+  const auto& P = particles_;
+  for (std::size_t k = begin; k < end; ++k) {
+    const double r = P.radius[k];
+    for (std::size_t m = 0; m < walls; ++m) {
+      const Wall& wall = walls_[m];
+      const double distance = dot(P.position[k] - wall.point, wall.normal);
+      Vec3& history = wall_history_[k * walls + m];
+      if (distance >= r) {
+        history = Vec3{};
+        continue;
+      }
+      // The particle is i, the wall j: the normal points from the particle into the wall.
+      ContactGeometry g;
+      g.normal = -wall.normal;
+      g.overlap = r - distance;
+      g.branch_i = distance;
+      g.branch_j = 0.0;
+      g.relative_velocity = wall.velocity - P.velocity[k] - cross(g.branch_i * P.angular_velocity[k], g.normal);
+      g.mean_spin = 0.5 * P.angular_velocity[k];
+      g.dt = dt_;
+      g.radius_i = r;
+      g.radius_j = 1e12 * r;  // a plane: R* = r
+      g.effective_mass = P.fixed[k] ? P.mass[k] : 1.0 / P.inverse_mass[k];
+      g.spin_i = P.angular_velocity[k];
+      g.spin_j = Vec3{};
+      const int t = P.type[k];
+      const auto& params = model.pair_params[t * model.type_count + t];
+      const PairForce f = Law::evaluate(g, params, history);
+      force[k] -= f.force_on_j;
+      torque[k] += f.torque_i;
+      wall_force[m] += f.force_on_j;
+      local.max_stiffness_over_mass = std::max(local.max_stiffness_over_mass, f.stiffness * P.inverse_mass[k]);
+      if constexpr (Measure) {
+        ++local.contacts;
+        local.contact_force_sum += norm(f.force_on_j);
+        local.strain_energy += f.energy;
+      }
+    }
   }
 }
 
@@ -435,6 +505,7 @@ void Engine::pair_forces(ContactModel<Law>& model, Totals& totals) {
       torque[i] += torque_i;
     }
     if (any_bonded) bond_forces<Measure>(t, force, torque, local);
+    if (!walls_.empty()) wall_forces<Law, Measure>(model, t, force, torque, local);
     thread_totals_[t] = local;
 #pragma omp barrier
     if (T > 1) {
@@ -454,6 +525,11 @@ void Engine::pair_forces(ContactModel<Law>& model, Totals& totals) {
   for (int t = 0; t < T; ++t) {
     totals.max_stiffness_over_mass = std::max(totals.max_stiffness_over_mass, thread_totals_[t].max_stiffness_over_mass);
     totals.bond_breaks += thread_totals_[t].bond_breaks;
+  }
+  for (std::size_t m = 0; m < walls_.size(); ++m) {
+    Vec3 sum{};
+    for (int t = 0; t < T; ++t) sum += thread_wall_force_[t][m];
+    wall_force_[m] = sum;
   }
   broken_bonds_ += totals.bond_breaks;
   if constexpr (Measure) {
@@ -514,6 +590,7 @@ Engine::Totals Engine::step_impl() {
               : cap;
   }
   integrate<Measure>(totals);
+  for (auto& wall : walls_) wall.point += dt_ * wall.velocity;
   ++step_;
   time_ += dt_;
   return totals;
@@ -569,6 +646,9 @@ void Engine::save_state(std::ostream& out) const {
   binary::write_vector(out, bonds_.state);
   binary::write_vector(out, bonds_.history);
   binary::write(out, static_cast<std::uint64_t>(broken_bonds_));
+  binary::write_vector(out, walls_);
+  binary::write_vector(out, wall_history_);
+  binary::write_vector(out, wall_force_);
   neighbors_.save(out);
   std::visit([&](const auto& model) { binary::write_vector(out, model.history); }, model_);
 }
@@ -609,6 +689,11 @@ void Engine::load_state(std::istream& in) {
   bonds_.state = std::move(bond_state);
   bonds_.history = std::move(bond_history);
   broken_bonds_ = broken;
+  binary::read_vector(in, walls_, "walls");
+  binary::read_vector(in, wall_history_, "wall contact histories");
+  binary::read_vector(in, wall_force_, "wall forces");
+  if (wall_history_.size() != n * walls_.size() || wall_force_.size() != walls_.size())
+    fail_input("checkpoint is damaged: wall data do not match");
   for (auto* v : {&P.position, &P.velocity, &P.angular_velocity, &P.force, &P.torque})
     if (v->size() != n) fail_input("checkpoint is damaged: array sizes differ");
   if (P.radius.size() != n || P.type.size() != n || P.fixed.size() != n || density_.size() != n ||

@@ -59,6 +59,15 @@ struct EngineConfig {
   int threads = 0;                 // 0 = OpenMP default
 };
 
+// A plane wall: particles on the side the normal points to are pushed back by the contact law
+// (the wall is taken to be of the touching particle's material, infinitely large and heavy).
+// It moves with a prescribed velocity; the engine records the force the particles exert on it.
+struct Wall {
+  Vec3 point;              // a point on the plane [m]
+  Vec3 normal{0, 0, 1};    // unit normal, pointing into the particles' side
+  Vec3 velocity{};         // [m/s]
+};
+
 // Names of the registered contact laws (the user-facing strings).
 std::vector<std::string> contact_law_names();
 
@@ -117,6 +126,14 @@ class Engine {
   int threads() const { return threads_; }
   long neighbor_builds() const { return neighbors_.builds(); }
   std::size_t intact_bonds() const;
+
+  // Walls: add before or during a run; index stays valid. Moving a wall: wall(k).velocity.
+  std::size_t add_wall(const Wall& wall);
+  Wall& wall(std::size_t k) { return walls_.at(k); }
+  const Wall& wall(std::size_t k) const { return walls_.at(k); }
+  std::size_t wall_count() const { return walls_.size(); }
+  // Force the particles exerted on wall k during the last step [N].
+  const Vec3& wall_force(std::size_t k) const { return wall_force_.at(k); }
   std::size_t particle_count() const { return particles_.size(); }
 
   // Particle arrays in the engine's internal order: sorted along a space-filling curve for
@@ -163,6 +180,8 @@ class Engine {
   void mark_bonded_pairs();
   template <bool Measure>
   void bond_forces(int thread, Vec3* force, Vec3* torque, Totals& local);
+  template <class Law, bool Measure>
+  void wall_forces(ContactModel<Law>& model, int thread, Vec3* force, Vec3* torque, Totals& local);
   std::array<int, 3> bond_image_now(std::size_t b) const;
   void update_mass(std::size_t k);
   double heaviest_particle_time_step() const;
@@ -179,6 +198,10 @@ class Engine {
   BondList bonds_;
   std::vector<std::uint8_t> pair_bonded_;  // per neighbour pair: the contact law is off
   std::size_t broken_bonds_ = 0;
+  std::vector<Wall> walls_;
+  std::vector<Vec3> wall_history_;                      // [particle * walls + wall] (contact law history)
+  std::vector<Vec3> wall_force_;                        // per wall, last step
+  std::vector<std::vector<Vec3>> thread_wall_force_;    // per thread, per wall
   NeighborList neighbors_;
   ContactModels model_;
   std::vector<std::vector<Vec3>> thread_force_, thread_torque_;
