@@ -353,6 +353,99 @@ void Engine::wall_forces(ContactModel<Law>& model, int thread, Vec3* force, Vec3
   }
 }
 
+ContactForces Engine::contact_forces() const {
+  ContactForces out;
+  const auto& P = particles_;
+  const std::size_t n = P.size();
+  auto geometry = [&](std::size_t i, std::size_t j, const Vec3& d) {
+    ContactGeometry g{};
+    const double dist = norm(d);
+    g.normal = d * (1.0 / dist);
+    g.overlap = P.radius[i] + P.radius[j] - dist;
+    g.branch_i = P.radius[i] - 0.5 * g.overlap;
+    g.branch_j = P.radius[j] - 0.5 * g.overlap;
+    g.dt = 0.0;  // no increment: the force as stored
+    g.radius_i = P.radius[i];
+    g.radius_j = P.radius[j];
+    g.effective_mass = 1.0 / (P.inverse_mass[i] + P.inverse_mass[j]);
+    return g;
+  };
+  auto push = [&](int i, int j, int kind, const Vec3& branch, const Vec3& force) {
+    out.i.push_back(i);
+    out.j.push_back(j);
+    out.kind.push_back(kind);
+    out.branch.push_back(branch);
+    out.force.push_back(force);
+  };
+  std::visit(
+      [&](const auto& model) {
+        using Law = std::decay_t<decltype(model.law)>;
+        for (std::size_t i = 0; i < n; ++i)
+          for (int p = neighbors_.first(static_cast<int>(i)); p < neighbors_.first(static_cast<int>(i) + 1); ++p) {
+            if (!pair_bonded_.empty() && pair_bonded_[p]) continue;
+            const std::size_t j = static_cast<std::size_t>(neighbors_.partner()[p]);
+            const Vec3 d = P.position[j] + neighbors_.image_offset(neighbors_.image()[p]) - P.position[i];
+            const double rsum = P.radius[i] + P.radius[j];
+            if (norm2(d) >= rsum * rsum) continue;
+            auto history = model.history[p];
+            const PairForce f = Law::evaluate(geometry(i, j, d),
+                                              model.pair_params[P.type[i] * model.type_count + P.type[j]], history);
+            push(original_index_[i], original_index_[j], ContactForces::contact, d, f.force_on_j);
+          }
+        for (std::size_t m = 0; m < walls_.size(); ++m)
+          for (std::size_t k = 0; k < n; ++k) {
+            const double distance = dot(P.position[k] - walls_[m].point, walls_[m].normal);
+            if (distance >= P.radius[k]) continue;
+            ContactGeometry g{};
+            g.normal = -walls_[m].normal;
+            g.overlap = P.radius[k] - distance;
+            g.branch_i = distance;
+            g.radius_i = P.radius[k];
+            g.radius_j = 1e12 * P.radius[k];
+            g.effective_mass = P.mass[k];
+            auto history = wall_history_[k * walls_.size() + m];
+            const int t = P.type[k];
+            const PairForce f = Law::evaluate(g, model.pair_params[t * model.type_count + t], history);
+            push(original_index_[k], -1 - static_cast<int>(m), ContactForces::wall, distance * g.normal, f.force_on_j);
+          }
+      },
+      model_);
+  for (std::size_t b = 0; b < bonds_.i.size(); ++b) {
+    if (bonds_.state[b] != 0) continue;
+    const std::size_t i = static_cast<std::size_t>(bonds_.i[b]), j = static_cast<std::size_t>(bonds_.j[b]);
+    const Vec3 d = P.position[j] + packing_.box.shift_vector(bond_image_now(b)) - P.position[i];
+    auto history = bonds_.history[b];
+    const auto& params = config_.bond_materials.size() == 1 ? config_.bond_materials[0]
+                                                             : config_.bond_materials[bonds_.material[b]];
+    const BondForce f = ContactBond::evaluate(geometry(i, j, d), params, history);
+    push(original_index_[i], original_index_[j], ContactForces::bond, d, f.force_on_j);
+  }
+  return out;
+}
+
+std::vector<std::array<double, 9>> particle_stress(const ContactForces& forces, const Packing& packing) {
+  std::vector<std::array<double, 9>> stress(packing.size(), std::array<double, 9>{});
+  auto add = [&](int particle, const Vec3& l, const Vec3& f, double weight) {
+    auto& s = stress[static_cast<std::size_t>(particle)];
+    for (int a = 0; a < 3; ++a)
+      for (int b = 0; b < 3; ++b) s[3 * a + b] += weight * l[a] * f[b];
+  };
+  for (std::size_t c = 0; c < forces.size(); ++c) {
+    if (forces.j[c] >= 0) {
+      add(forces.i[c], forces.branch[c], -forces.force[c], 0.5);  // i: branch to j, force -F
+      add(forces.j[c], -forces.branch[c], forces.force[c], 0.5);  // j: branch to i, force F
+    } else {
+      add(forces.i[c], forces.branch[c], -forces.force[c], 1.0);  // wall: branch to contact point
+    }
+  }
+  for (std::size_t k = 0; k < packing.size(); ++k) {
+    const double r = packing.radius[k];
+    const double volume = 4.0 / 3.0 * std::numbers::pi * r * r * r;
+    for (double& v : stress[k]) v /= volume;
+  }
+  return stress;
+}
+
 std::size_t Engine::intact_bonds() const {
   std::size_t count = 0;
   for (int st : bonds_.state) count += st == 0;

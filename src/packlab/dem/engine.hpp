@@ -84,6 +84,25 @@ struct Diagnostics {
   std::size_t broken_bonds = 0;        // broken so far (including those broken in the file)
 };
 
+// Every force acting between bodies at the current state, as plain arrays (packing order).
+// For a particle pair, `branch` is the vector from the centre of i to the centre of j (the
+// periodic image that touches) and `force` the force on j (i feels its negative); for a wall
+// contact j is -1 - wall index and `branch` goes from the centre to the contact point.
+struct ContactForces {
+  enum Kind : int { contact = 0, bond = 1, wall = 2 };
+  std::vector<int> i, j;
+  std::vector<int> kind;
+  std::vector<Vec3> branch;  // [m]
+  std::vector<Vec3> force;   // [N]
+  std::size_t size() const { return i.size(); }
+};
+
+// Per-particle Cauchy stress (bpm-inverse-opals eq. 21): sigma_ab = 1/(2 V_p) sum_c l_a F_b
+// over the particle's contacts, with l the branch vector to the other centre (twice the
+// vector to the contact point, hence the 1/2) and F the force on the particle; tension
+// positive. Nine components per particle, row-major, in packing order [Pa].
+std::vector<std::array<double, 9>> particle_stress(const ContactForces& forces, const Packing& packing);
+
 template <class Law>
 struct ContactModel {
   Law law;
@@ -126,6 +145,10 @@ class Engine {
   int threads() const { return threads_; }
   long neighbor_builds() const { return neighbors_.builds(); }
   std::size_t intact_bonds() const;
+
+  // The forces of every touching pair, intact bond and wall contact at the current state
+  // (the stored shear histories; no step is taken and nothing changes).
+  ContactForces contact_forces() const;
 
   // Walls: add before or during a run; index stays valid. Moving a wall: wall(k).velocity.
   std::size_t add_wall(const Wall& wall);
