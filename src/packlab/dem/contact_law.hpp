@@ -30,6 +30,10 @@ struct ContactGeometry {
   double radius_j = 0.0;   // [m]
   double effective_mass = 0.0;  // m_i m_j / (m_i + m_j) [kg] (m_i alone against a fixed j)
   Vec3 spin_i{}, spin_j{};      // angular velocities [rad/s]
+  // Bonds only:
+  Vec3 relative_spin{};         // omega_j - omega_i [rad/s]
+  double rest_length = 0.0;     // initial bond length [m]
+  double time = 0.0;            // simulated time [s]
 };
 
 struct PairForce {

@@ -120,16 +120,24 @@ Engine::Engine(const Packing& packing, const EngineConfig& config) : packing_(pa
       bonds_.material.push_back(in.material[b]);
       bonds_.rest_length.push_back(in.rest_length[b]);
       bonds_.state.push_back(in.state[b] == 0 ? 0 : 1);
-      bonds_.history.push_back(ContactBond::State{});
       bonds_.pair.push_back(-1);
       any_intact = any_intact || in.state[b] == 0;
       if (in.state[b] != 0) ++broken_bonds_;
     }
+    if (config_.bond_law == ContactBond::name) {
+      bonds_.history = std::vector<ContactBond::State>(in.size());
+    } else if (config_.bond_law == ElasticBond::name) {
+      bonds_.history = std::vector<ElasticBond::State>(in.size());
+    } else {
+      fail_input(fmt::format("bond_law = {}: must be '{}' or '{}'", config_.bond_law, ContactBond::name,
+                             ElasticBond::name));
+    }
     if (any_intact) {
-      if (config_.bond_law != ContactBond::name)
-        fail_input(fmt::format("bond_law = {}: must be '{}'", config_.bond_law, ContactBond::name));
-      if (config_.bond_materials.empty())
-        fail_input("the packing has bonds but no bond parameters were given (bond_materials)");
+      const std::size_t materials = config_.bond_law == ContactBond::name ? config_.bond_materials.size()
+                                                                          : config_.elastic_bond_materials.size();
+      if (materials == 0)
+        fail_input(fmt::format("the packing has bonds but no parameters were given for the '{}' bond law",
+                               config_.bond_law));
       for (std::size_t m = 0; m < config_.bond_materials.size(); ++m) {
         const auto& bp = config_.bond_materials[m];
         const std::string key = fmt::format("bond material {} ", m);
@@ -140,11 +148,26 @@ Engine::Engine(const Packing& packing, const EngineConfig& config) : packing_(pa
         require(bp.normal_strength >= 0.0, key + "normal_strength", bp.normal_strength, ">= 0 N (inf: never)");
         require(bp.shear_strength >= 0.0, key + "shear_strength", bp.shear_strength, ">= 0 N (inf: never)");
       }
-      for (std::size_t b = 0; b < in.size(); ++b)
-        if (config_.bond_materials.size() > 1 &&
-            (in.material[b] < 0 || static_cast<std::size_t>(in.material[b]) >= config_.bond_materials.size()))
+      for (std::size_t m = 0; m < config_.elastic_bond_materials.size(); ++m) {
+        const auto& bp = config_.elastic_bond_materials[m];
+        const std::string key = fmt::format("elastic bond material {} ", m);
+        require(bp.youngs_modulus > 0.0 && std::isfinite(bp.youngs_modulus), key + "youngs_modulus",
+                bp.youngs_modulus, "> 0 Pa");
+        require(bp.poisson_ratio > -1.0 && bp.poisson_ratio < 0.5, key + "poisson_ratio", bp.poisson_ratio,
+                "in (-1, 0.5)");
+        require(bp.normal_strength > 0.0, key + "normal_strength", bp.normal_strength, "> 0 Pa (inf: never)");
+        require(bp.shear_strength > 0.0, key + "shear_strength", bp.shear_strength, "> 0 Pa (inf: never)");
+        require(bp.radius_ratio > 0.0 && bp.radius_ratio <= 1.0, key + "radius_ratio", bp.radius_ratio, "in (0, 1]");
+        require(bp.relaxation_time > 0.0, key + "relaxation_time", bp.relaxation_time, "> 0 s");
+      }
+      for (std::size_t b = 0; b < in.size(); ++b) {
+        if (materials > 1 && (in.material[b] < 0 || static_cast<std::size_t>(in.material[b]) >= materials))
           fail_input(fmt::format("bond {} has material {}: parameters were given for materials 0..{}", b,
-                                 in.material[b], config_.bond_materials.size() - 1));
+                                 in.material[b], materials - 1));
+        if (config_.bond_law == ElasticBond::name && !(in.rest_length[b] > 0.0))
+          fail_input(fmt::format("bond {} has rest length {:g}: must be > 0 m for elastic bonds", b,
+                                 in.rest_length[b]));
+      }
     }
   }
   threads_ = config_.threads > 0 ? config_.threads : omp_get_max_threads();
@@ -181,14 +204,18 @@ double Engine::critical_time_step() const {
         }
       },
       model_);
-  for (std::size_t b = 0; b < bonds_.i.size(); ++b) {
-    if (bonds_.state[b] != 0) continue;
-    const auto& bp = config_.bond_materials.size() == 1 ? config_.bond_materials[0]
-                                                         : config_.bond_materials[bonds_.material[b]];
-    const double m = std::min(particles_.fixed[bonds_.i[b]] ? std::numeric_limits<double>::infinity() : particles_.mass[bonds_.i[b]],
-                              particles_.fixed[bonds_.j[b]] ? std::numeric_limits<double>::infinity() : particles_.mass[bonds_.j[b]]);
-    if (std::isfinite(m)) dt = std::min(dt, std::sqrt(m / ContactBond::stiffness(bp)));
-  }
+  with_bond_law([&](auto law) {
+    using BondLaw = decltype(law);
+    const double inf = std::numeric_limits<double>::infinity();
+    for (std::size_t b = 0; b < bonds_.i.size(); ++b) {
+      if (bonds_.state[b] != 0) continue;
+      const auto i = static_cast<std::size_t>(bonds_.i[b]), j = static_cast<std::size_t>(bonds_.j[b]);
+      const double m = std::min(particles_.fixed[i] ? inf : particles_.mass[i], particles_.fixed[j] ? inf : particles_.mass[j]);
+      const double k = BondLaw::stiffness(bond_params<BondLaw>(b), particles_.radius[i], particles_.radius[j],
+                                          bonds_.rest_length[b]);
+      if (std::isfinite(m)) dt = std::min(dt, std::sqrt(m / k));
+    }
+  });
   return config_.time_step_safety * dt;
 }
 
@@ -283,6 +310,29 @@ void Engine::mark_bonded_pairs() {
         pair_bonded_[p] = 1;
       }
   }
+}
+
+template <class BondLaw>
+const std::vector<typename BondLaw::Params>& Engine::bond_materials() const {
+  if constexpr (std::is_same_v<BondLaw, ContactBond>)
+    return config_.bond_materials;
+  else
+    return config_.elastic_bond_materials;
+}
+
+template <class BondLaw>
+const typename BondLaw::Params& Engine::bond_params(std::size_t b) const {
+  const auto& materials = bond_materials<BondLaw>();
+  return materials.size() == 1 ? materials[0] : materials[static_cast<std::size_t>(bonds_.material[b])];
+}
+
+template <class F>
+void Engine::with_bond_law(F&& f) const {
+  if (bonds_.i.empty()) return;
+  if (std::holds_alternative<std::vector<ContactBond::State>>(bonds_.history))
+    f(ContactBond{});
+  else
+    f(ElasticBond{});
 }
 
 std::size_t Engine::add_wall(const Wall& wall) {
@@ -410,16 +460,21 @@ ContactForces Engine::contact_forces() const {
           }
       },
       model_);
-  for (std::size_t b = 0; b < bonds_.i.size(); ++b) {
-    if (bonds_.state[b] != 0) continue;
-    const std::size_t i = static_cast<std::size_t>(bonds_.i[b]), j = static_cast<std::size_t>(bonds_.j[b]);
-    const Vec3 d = P.position[j] + packing_.box.shift_vector(bond_image_now(b)) - P.position[i];
-    auto history = bonds_.history[b];
-    const auto& params = config_.bond_materials.size() == 1 ? config_.bond_materials[0]
-                                                             : config_.bond_materials[bonds_.material[b]];
-    const BondForce f = ContactBond::evaluate(geometry(i, j, d), params, history);
-    push(original_index_[i], original_index_[j], ContactForces::bond, d, f.force_on_j);
-  }
+  with_bond_law([&](auto law) {
+    using BondLaw = decltype(law);
+    const auto& histories = std::get<std::vector<typename BondLaw::State>>(bonds_.history);
+    for (std::size_t b = 0; b < bonds_.i.size(); ++b) {
+      if (bonds_.state[b] != 0) continue;
+      const std::size_t i = static_cast<std::size_t>(bonds_.i[b]), j = static_cast<std::size_t>(bonds_.j[b]);
+      const Vec3 d = P.position[j] + packing_.box.shift_vector(bond_image_now(b)) - P.position[i];
+      auto history = histories[b];
+      ContactGeometry g = geometry(i, j, d);
+      g.rest_length = bonds_.rest_length[b];
+      g.time = time_;
+      const BondForce f = BondLaw::evaluate(g, bond_params<BondLaw>(b), history);
+      push(original_index_[i], original_index_[j], ContactForces::bond, d, f.force_on_j);
+    }
+  });
   return out;
 }
 
@@ -452,8 +507,9 @@ std::size_t Engine::intact_bonds() const {
   return count;
 }
 
-template <bool Measure>
+template <class BondLaw, bool Measure>
 void Engine::bond_forces(int thread, Vec3* force, Vec3* torque, Totals& local) {
+  auto& histories = std::get<std::vector<typename BondLaw::State>>(bonds_.history);
   const std::size_t nb = bonds_.i.size();
   const std::size_t begin = nb * thread / threads_, end = nb * (thread + 1) / threads_;
   const auto& P = particles_;
@@ -473,15 +529,19 @@ void Engine::bond_forces(int thread, Vec3* force, Vec3* torque, Totals& local) {
                           cross(g.branch_j * P.angular_velocity[j] + g.branch_i * P.angular_velocity[i], g.normal);
     g.mean_spin = 0.5 * (P.angular_velocity[i] + P.angular_velocity[j]);
     g.dt = dt_;
-    const auto& params = config_.bond_materials.size() == 1 ? config_.bond_materials[0]
-                                                             : config_.bond_materials[bonds_.material[b]];
-    const BondForce f = ContactBond::evaluate(g, params, bonds_.history[b]);
+    g.radius_i = P.radius[i];
+    g.radius_j = P.radius[j];
+    g.relative_spin = P.angular_velocity[j] - P.angular_velocity[i];
+    g.rest_length = bonds_.rest_length[b];
+    g.time = time_;
+    const auto& params = bond_params<BondLaw>(b);
+    const BondForce f = BondLaw::evaluate(g, params, histories[b]);
+    if (f.failed) ++local.bond_breaks;
     if (f.broken) {
       bonds_.state[b] = 1;
       // The pair interacts through the contact law from the next step on. Only this thread
       // touches bond b and its pair.
       if (bonds_.pair[b] >= 0) pair_bonded_[static_cast<std::size_t>(bonds_.pair[b])] = 0;
-      ++local.bond_breaks;
       continue;
     }
     force[i] -= f.force_on_j;
@@ -490,7 +550,8 @@ void Engine::bond_forces(int thread, Vec3* force, Vec3* torque, Totals& local) {
     torque[j] += f.torque_j;
     local.max_stiffness_over_mass =
         std::max(local.max_stiffness_over_mass,
-                 ContactBond::stiffness(params) * std::max(P.inverse_mass[i], P.inverse_mass[j]));
+                 BondLaw::stiffness(params, P.radius[i], P.radius[j], bonds_.rest_length[b]) *
+                     std::max(P.inverse_mass[i], P.inverse_mass[j]));
     if constexpr (Measure) {
       local.contact_force_sum += norm(f.force_on_j);
       ++local.contacts;
@@ -597,7 +658,12 @@ void Engine::pair_forces(ContactModel<Law>& model, Totals& totals) {
       force[i] += force_i;
       torque[i] += torque_i;
     }
-    if (any_bonded) bond_forces<Measure>(t, force, torque, local);
+    if (any_bonded) {
+      if (std::holds_alternative<std::vector<ContactBond::State>>(bonds_.history))
+        bond_forces<ContactBond, Measure>(t, force, torque, local);
+      else
+        bond_forces<ElasticBond, Measure>(t, force, torque, local);
+    }
     if (!walls_.empty()) wall_forces<Law, Measure>(model, t, force, torque, local);
     thread_totals_[t] = local;
 #pragma omp barrier
@@ -737,7 +803,7 @@ void Engine::save_state(std::ostream& out) const {
   binary::write_vector(out, original_index_);
   binary::write_vector(out, wraps_);
   binary::write_vector(out, bonds_.state);
-  binary::write_vector(out, bonds_.history);
+  std::visit([&](const auto& h) { binary::write_vector(out, h); }, bonds_.history);
   binary::write(out, static_cast<std::uint64_t>(broken_bonds_));
   binary::write_vector(out, walls_);
   binary::write_vector(out, wall_history_);
@@ -772,15 +838,19 @@ void Engine::load_state(std::istream& in) {
   binary::read_vector(in, original_index_, "particle order");
   binary::read_vector(in, wraps_, "periodic images");
   std::vector<int> bond_state;
-  std::vector<ContactBond::State> bond_history;
   binary::read_vector(in, bond_state, "bond states");
-  binary::read_vector(in, bond_history, "bond histories");
+  std::size_t history_size = 0;
+  std::visit(
+      [&](auto& h) {
+        binary::read_vector(in, h, "bond histories");
+        history_size = h.size();
+      },
+      bonds_.history);
   std::uint64_t broken = 0;
   binary::read(in, broken, "broken bond count");
-  if (wraps_.size() != n || bond_state.size() != bonds_.i.size() || bond_history.size() != bonds_.i.size())
+  if (wraps_.size() != n || bond_state.size() != bonds_.i.size() || history_size != bonds_.i.size())
     fail_input("checkpoint does not match this packing's particles and bonds");
   bonds_.state = std::move(bond_state);
-  bonds_.history = std::move(bond_history);
   broken_bonds_ = broken;
   binary::read_vector(in, walls_, "walls");
   binary::read_vector(in, wall_history_, "wall contact histories");

@@ -54,8 +54,11 @@ struct EngineConfig {
   double skin_ratio = 0.2;         // Verlet skin as a fraction of the largest radius [-]
   // Bonds of the packing's bond list: parameters per bond material (a single entry applies to
   // every material). Required when the packing has intact bonds.
+  // bond_law "contact" (PFC contact bond) takes bond_materials, "elastic" (bpm eq. 11-17)
+  // takes elastic_bond_materials.
   std::string bond_law = "contact";
   std::vector<ContactBond::Params> bond_materials;
+  std::vector<ElasticBond::Params> elastic_bond_materials;
   int threads = 0;                 // 0 = OpenMP default
 };
 
@@ -190,7 +193,7 @@ class Engine {
     std::vector<int> material;
     std::vector<double> rest_length;
     std::vector<int> state;                      // 0 intact, 1 broken
-    std::vector<ContactBond::State> history;
+    std::variant<std::vector<ContactBond::State>, std::vector<ElasticBond::State>> history;
     std::vector<int> pair;                       // index in the neighbour list, or -1
   };
   template <bool Measure>
@@ -201,8 +204,15 @@ class Engine {
   void integrate(Totals& totals);
   void refresh_neighbors();
   void mark_bonded_pairs();
-  template <bool Measure>
+  template <class BondLaw, bool Measure>
   void bond_forces(int thread, Vec3* force, Vec3* torque, Totals& local);
+  template <class BondLaw>
+  const std::vector<typename BondLaw::Params>& bond_materials() const;
+  template <class BondLaw>
+  const typename BondLaw::Params& bond_params(std::size_t b) const;
+  // Calls f(BondLaw{}) with the configured bond law.
+  template <class F>
+  void with_bond_law(F&& f) const;
   template <class Law, bool Measure>
   void wall_forces(ContactModel<Law>& model, int thread, Vec3* force, Vec3* torque, Totals& local);
   std::array<int, 3> bond_image_now(std::size_t b) const;
