@@ -36,6 +36,22 @@ tmp="$out.tmp$$"
 } > "$tmp"
 mv "$tmp" "$out"
 echo "wrote $out"
+# The Python API reference from the module's docstrings, and the tutorial's figures from a
+# run of the tutorial's own code (docs/tutorial.py), when the Python module is built.
+PY=/usr/bin/python3
+export PYTHONPATH="$ROOT/python:$BUILD/python${PYTHONPATH:+:$PYTHONPATH}"
+if "$PY" -c "import packlab._core" 2>/dev/null; then
+  "$PY" "$ROOT/scripts/make-python-reference.py" "$ROOT/docs/python-reference.md"
+  fig_tmp=$(mktemp -d)
+  MPLBACKEND=Agg "$PY" "$ROOT/docs/tutorial.py" "$fig_tmp" > "$fig_tmp/tutorial.log"
+  mkdir -p "$ROOT/docs/figures"
+  for png in "$fig_tmp"/tutorial-*.png; do cp "$png" "$ROOT/docs/figures/"; done
+  cp "$fig_tmp/tutorial.log" "$ROOT/docs/figures/tutorial-output.txt"
+  rm -rf "$fig_tmp"
+  echo "wrote docs/python-reference.md and docs/figures/tutorial-*.png"
+else
+  echo "make docs: the Python module is not built ($BUILD/python); Python reference and figures skipped" >&2
+fi
 for gen in "$ROOT"/docs/figures/make-*.sh; do
   [ -x "$gen" ] && "$gen" "$BUILD"
 done

@@ -19,10 +19,16 @@ int main(int argc, char** argv) {
   generate->require_subcommand(1);
   packlab::cli::add_generate_lattice(*generate);
   packlab::cli::add_generate_random(*generate);
+  packlab::cli::add_generate_vem(*generate);
   packlab::cli::add_info(app);
   packlab::cli::add_convert(app);
   packlab::cli::add_relax(app);
   // Further subcommands register here, one line each (their files are in src/packlab/cli/).
+  packlab::cli::add_generate_ls(*generate);
+  packlab::cli::add_generate_scrm(*generate);
+  packlab::cli::add_shake(app);
+  auto* analyze = packlab::cli::add_analyze(app);
+  packlab::cli::add_analyze_rdf(*analyze);
   // CLI11 says only "A subcommand is required" for a misspelt one: name it and list the known.
   if (argc > 1 && argv[1][0] != '-') {
     std::string known;

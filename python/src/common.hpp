@@ -1,0 +1,149 @@
+// Shared helpers of the Python module packlab._core (pybind11): NumPy views of the C++
+// arrays without copies, moving result vectors into NumPy arrays, the throttled progress
+// callback that re-acquires the GIL, and conversions of small vectors.
+#pragma once
+
+#include <pybind11/functional.h>
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+#include <pybind11/stl/filesystem.h>
+
+#include <array>
+#include <chrono>
+#include <cstddef>
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <type_traits>
+#include <utility>
+#include <vector>
+
+#include "packlab/core/vec3.hpp"
+
+namespace py = pybind11;
+
+namespace packlab::python {
+
+static_assert(sizeof(Vec3) == 3 * sizeof(double) && std::is_standard_layout_v<Vec3>,
+              "Vec3 must be three contiguous doubles to be viewed as an N x 3 array");
+static_assert(sizeof(std::array<int, 3>) == 3 * sizeof(int));
+
+inline void make_read_only(py::array& a) { a.attr("setflags")(py::arg("write") = false); }
+
+// A 1-D NumPy view of v; `owner` (the Python object that owns v) is kept alive by the array.
+// The view is valid until the vector is resized (the particle count changes).
+template <class T>
+py::array view(std::vector<T>& v, py::handle owner, bool writeable = true) {
+  py::array a = py::array_t<T>({static_cast<py::ssize_t>(v.size())}, {static_cast<py::ssize_t>(sizeof(T))},
+                               v.data(), owner);
+  if (!writeable) make_read_only(a);
+  return a;
+}
+
+// An N x 3 float64 view of a vector of Vec3.
+inline py::array view(std::vector<Vec3>& v, py::handle owner, bool writeable = true) {
+  py::array a = py::array_t<double>({static_cast<py::ssize_t>(v.size()), py::ssize_t{3}},
+                                    {static_cast<py::ssize_t>(sizeof(Vec3)), static_cast<py::ssize_t>(sizeof(double))},
+                                    reinterpret_cast<double*>(v.data()), owner);
+  if (!writeable) make_read_only(a);
+  return a;
+}
+
+// An N x 3 int32 view of a vector of std::array<int, 3> (bond images).
+inline py::array view(std::vector<std::array<int, 3>>& v, py::handle owner, bool writeable = true) {
+  py::array a = py::array_t<int>({static_cast<py::ssize_t>(v.size()), py::ssize_t{3}},
+                                 {static_cast<py::ssize_t>(3 * sizeof(int)), static_cast<py::ssize_t>(sizeof(int))},
+                                 reinterpret_cast<int*>(v.data()), owner);
+  if (!writeable) make_read_only(a);
+  return a;
+}
+
+// A bool view of a vector of 0/1 bytes (fixed flags, rattlers).
+inline py::array bool_view(std::vector<std::uint8_t>& v, py::handle owner, bool writeable = true) {
+  py::array a(py::dtype("bool"), {static_cast<py::ssize_t>(v.size())}, {py::ssize_t{1}}, v.data(), owner);
+  if (!writeable) make_read_only(a);
+  return a;
+}
+
+// Moves a result vector into a NumPy array that owns it (no copy of the elements).
+template <class T>
+py::array to_numpy(std::vector<T>&& v) {
+  auto* heap = new std::vector<T>(std::move(v));
+  py::capsule owner(heap, [](void* p) { delete static_cast<std::vector<T>*>(p); });
+  return view(*heap, owner);
+}
+inline py::array to_numpy_bool(std::vector<std::uint8_t>&& v) {
+  auto* heap = new std::vector<std::uint8_t>(std::move(v));
+  py::capsule owner(heap, [](void* p) { delete static_cast<std::vector<std::uint8_t>*>(p); });
+  return bool_view(*heap, owner);
+}
+
+// Copies an array-like into a vector of n elements (n < 0: any length); ValueError naming `what`.
+template <class T>
+std::vector<T> from_numpy(const py::handle& values, const char* what, py::ssize_t n = -1) {
+  auto a = py::array_t<T, py::array::c_style | py::array::forcecast>::ensure(values);
+  if (!a) throw py::value_error(std::string(what) + ": must be convertible to a NumPy array");
+  if (a.ndim() != 1) throw py::value_error(std::string(what) + ": must be a 1-D array");
+  if (n >= 0 && a.shape(0) != n)
+    throw py::value_error(std::string(what) + ": must have " + std::to_string(n) + " entries, got " +
+                          std::to_string(a.shape(0)));
+  return std::vector<T>(a.data(), a.data() + a.shape(0));
+}
+
+inline std::vector<Vec3> vec3s_from_numpy(const py::handle& values, const char* what, py::ssize_t n = -1) {
+  auto a = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(values);
+  if (!a || a.ndim() != 2 || a.shape(1) != 3)
+    throw py::value_error(std::string(what) + ": must be an N x 3 array");
+  if (n >= 0 && a.shape(0) != n)
+    throw py::value_error(std::string(what) + ": must have " + std::to_string(n) + " rows, got " +
+                          std::to_string(a.shape(0)));
+  std::vector<Vec3> out(static_cast<std::size_t>(a.shape(0)));
+  for (py::ssize_t k = 0; k < a.shape(0); ++k) out[static_cast<std::size_t>(k)] = {a.at(k, 0), a.at(k, 1), a.at(k, 2)};
+  return out;
+}
+
+inline Vec3 to_vec3(const std::array<double, 3>& a) { return {a[0], a[1], a[2]}; }
+inline std::array<double, 3> from_vec3(const Vec3& v) { return {v.x, v.y, v.z}; }
+
+// The optional progress callback of long runs. The run itself holds no GIL; every call of
+// tick() (from the thread that released it) re-acquires the GIL, checks for Ctrl-C and calls
+// the callback at most every `interval` seconds (always when `force`). A Python exception in
+// the callback (or KeyboardInterrupt) stops the run and propagates.
+class ProgressCallback {
+ public:
+  ProgressCallback(py::object callback, double interval) : callback_(std::move(callback)), interval_(interval) {}
+
+  template <class... Args>
+  void tick(bool force, Args&&... args) {
+    const auto now = std::chrono::steady_clock::now();
+    const bool due = force || !called_ || std::chrono::duration<double>(now - last_).count() >= interval_;
+    const bool signal_due = std::chrono::duration<double>(now - last_signal_check_).count() >= 0.05;
+    if (!(due && !callback_.is_none()) && !signal_due) return;
+    py::gil_scoped_acquire gil;
+    if (signal_due) {
+      last_signal_check_ = now;
+      if (PyErr_CheckSignals() != 0) throw py::error_already_set();
+    }
+    if (due && !callback_.is_none()) {
+      called_ = true;
+      last_ = now;
+      callback_(std::forward<Args>(args)...);
+    }
+  }
+
+ private:
+  py::object callback_;
+  double interval_;
+  bool called_ = false;
+  std::chrono::steady_clock::time_point last_{}, last_signal_check_{};
+};
+
+// One function per concern (packing.cpp, io.cpp, generate.cpp, analyze.cpp, dem.cpp).
+void bind_packing(py::module_& m);
+void bind_io(py::module_& m);
+void bind_generate(py::module_& m);
+void bind_analyze(py::module_& m);
+void bind_dem(py::module_& m);
+
+}  // namespace packlab::python

@@ -1,0 +1,60 @@
+"""A small run of each generator, keywords as on the command line."""
+
+import numpy as np
+import pytest
+
+import packlab
+
+
+def no_overlap(p, tol=1e-9):
+    c = packlab.find_contacts(p, contact_eps=0.0)
+    d = np.linalg.norm(c["branch"], axis=1)
+    s = p.radii[c["i"]] + p.radii[c["j"]]
+    return (d >= s * (1 - tol)).all()
+
+
+@pytest.mark.parametrize("kind,n,phi", [("sc", 8, np.pi / 6), ("bcc", 16, np.pi * np.sqrt(3) / 8),
+                                        ("fcc", 32, np.pi / (3 * np.sqrt(2)))])
+def test_lattice(kind, n, phi):
+    p = packlab.generate_lattice(type=kind, cells=(2, 2, 2), radius=0.25e-6)
+    assert len(p) == n and p.volume_fraction() == pytest.approx(phi)
+
+
+def test_random_and_rsa():
+    p = packlab.generate_random(particles=300, radius=0.5, phi=0.3, no_overlap=True, seed=4)
+    assert p.volume_fraction() == pytest.approx(0.3) and no_overlap(p)
+    q = packlab.generate_random(particles=300, radius=0.5, phi=0.3, no_overlap=True, seed=4)
+    assert np.array_equal(p.positions, q.positions)  # same seed, same packing
+
+
+def test_ls_to_target_and_shake():
+    blocks = []
+    r = packlab.generate_ls(phi=0.5, particles=150, radius=0.5, seed=1,
+                            progress=lambda b, phi, pressure: blocks.append(b), progress_interval=0.0)
+    assert r.stop == "target_reached" and r.volume_fraction == pytest.approx(0.5)
+    assert no_overlap(r.packing) and blocks and len(r.log["block"]) == r.blocks
+    s = packlab.shake(r.packing, sweeps=3, seed=2)
+    assert s.sweeps == 3 and no_overlap(s.packing)
+    assert not np.array_equal(s.packing.positions, r.packing.positions)
+
+
+def test_scrm_bimodal():
+    r = packlab.generate_scrm(phi=0.55, particles=150, sizes=[1, 0.5], number_fractions=[0.5, 0.5],
+                              final_shakes=2, seed=3)
+    assert r.packing.volume_fraction() == pytest.approx(0.55, rel=1e-6)
+    assert len(np.unique(r.packing.radii)) == 2 and no_overlap(r.packing)
+
+
+def test_vem_small_run():
+    v = packlab.generate_vem(structural=60, voids=30, phi_s=0.3, radius=0.25e-6, threads=1, max_q=0.3, seed=1)
+    assert len(v.packing) == 60 and set(v.packing.types) == {0}
+    c = v.curve
+    assert c["q"][0] == pytest.approx(0.0, abs=1e-12) or c["q"][0] > 0
+    assert len(c["q"]) == len(c["cn"]) >= 2 and (np.diff(c["q"]) > 0).all()
+
+
+def test_generator_errors():
+    with pytest.raises(packlab.InputError):
+        packlab.generate_ls(phi=0.5, particles=10, sizes=[1, 0.5], number_fractions=[1, 1], volume_fractions=[1, 1])
+    with pytest.raises(packlab.InputError):
+        packlab.generate_vem(structural=10, voids=5, phi_s=0.9)

@@ -1,0 +1,464 @@
+// packlab generate vem [--config FILE.toml] [--structural N] [--voids N] [--phi-s X] [--radius R]
+//   [--seed S] [--threads T] [--max-q Q] [--snapshot-every K] [--checkpoint-seconds S]
+//   [--no-plots] [--quiet] --out DIR
+// packlab generate vem --resume DIR [--threads T]
+//
+// The void expansion method (generate/vem.hpp, docs/vem.md). DIR receives packing.xyz and
+// packing.vtu (the structural particles at the end, voids removed), cn_curve.csv, cn_curve.png,
+// report.json (inflection point, beta, parameters, timings), checkpoint.bin (written every
+// --checkpoint-seconds and at the end) and, with --snapshot-every K, snapshots/cycle_NNNNN.xyz
+// (structural particles before every K-th increment). Flags override the config file.
+#include <fmt/format.h>
+
+#include <chrono>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <memory>
+#include <sstream>
+#include <toml++/toml.h>
+
+#include "packlab/analyze/inflection.hpp"
+#include "packlab/analyze/power_law.hpp"
+#include "packlab/cli/commands.hpp"
+#include "packlab/core/binary_io.hpp"
+#include "packlab/core/error.hpp"
+#include "packlab/core/progress.hpp"
+#include "packlab/generate/vem.hpp"
+#include "packlab/io/atomic_file.hpp"
+#include "packlab/io/packing_io.hpp"
+#include "packlab/io/plot.hpp"
+#include "packlab/io/report.hpp"
+
+namespace packlab::cli {
+
+namespace {
+
+// Settings of the command (not of the method); saved after the method's state in checkpoint.bin.
+struct RunSettings {
+  long snapshot_every = 0;          // 0 = no snapshots
+  double checkpoint_seconds = 120;  // wall-clock seconds between checkpoints
+  double window_widths = 4.0;       // inflection fit window, in logistic widths
+  double power_law_max_excess = 1.0;  // largest Phi_T - Phi_T,i in the beta fit
+  bool plots = true;
+};
+
+constexpr std::uint64_t settings_magic = 0x31544553434D4556ULL;  // "VEMCSET1"
+
+[[noreturn]] void bad_key(const std::string& file, const std::string& key, const std::string& why) {
+  fail_input(fmt::format("{}: {} = ...: {}", file, key, why));
+}
+
+double get_double(const toml::node& v, const std::string& file, const std::string& key) {
+  if (auto d = v.value<double>()) return *d;
+  bad_key(file, key, "must be a number");
+}
+
+long get_long(const toml::node& v, const std::string& file, const std::string& key) {
+  if (v.is_integer()) return static_cast<long>(*v.value<std::int64_t>());
+  bad_key(file, key, "must be an integer");
+}
+
+bool get_bool(const toml::node& v, const std::string& file, const std::string& key) {
+  if (auto b = v.value<bool>()) return *b;
+  bad_key(file, key, "must be true or false");
+}
+
+void read_material(const toml::table& t, const std::string& file, const std::string& section,
+                   dem::TypeParams& m) {
+  for (auto&& [k, v] : t) {
+    const std::string key(k.str());
+    const std::string full = section + "." + key;
+    if (key == "normal_stiffness") m.normal_stiffness = get_double(v, file, full);
+    else if (key == "shear_stiffness") m.shear_stiffness = get_double(v, file, full);
+    else if (key == "density") m.density = get_double(v, file, full);
+    else if (key == "damping") m.damping = get_double(v, file, full);
+    else if (key == "friction") m.friction = get_double(v, file, full);
+    else bad_key(file, full, "unknown key (known: normal_stiffness, shear_stiffness, density, damping, friction)");
+  }
+}
+
+// Reads the TOML config (docs/vem.md lists every key); unknown keys are errors.
+void read_config(const std::string& file, generate::VemParams& p, RunSettings& s) {
+  toml::table root;
+  try {
+    root = toml::parse_file(file);
+  } catch (const toml::parse_error& e) {
+    fail_input(fmt::format("{}:{}: {}", file, e.source().begin.line, e.description()));
+  }
+  for (auto&& [k, v] : root) {
+    const std::string key(k.str());
+    const auto section = [&](const char* name) -> const toml::table& {
+      if (!v.is_table()) bad_key(file, key, fmt::format("must be a table [{}]", name));
+      return *v.as_table();
+    };
+    if (key == "structural") p.structural = get_long(v, file, key);
+    else if (key == "voids") p.voids = get_long(v, file, key);
+    else if (key == "phi_s") p.phi_s = get_double(v, file, key);
+    else if (key == "radius") p.radius = get_double(v, file, key);
+    else if (key == "seed") p.seed = static_cast<std::uint64_t>(get_long(v, file, key));
+    else if (key == "threads") p.threads = static_cast<int>(get_long(v, file, key));
+    else if (key == "blowup_steps") p.blowup_steps = static_cast<int>(get_long(v, file, key));
+    else if (key == "void_radius_ratio") p.void_radius_ratio = get_double(v, file, key);
+    else if (key == "contact_eps") p.contact_eps = get_double(v, file, key);
+    else if (key == "void_mass_scaling") p.void_mass_scaling = get_double(v, file, key);
+    else if (key == "time_step_safety") p.time_step_safety = get_double(v, file, key);
+    else if (key == "skin") p.skin = get_double(v, file, key);
+    else if (key == "damping") p.structural_material.damping = p.void_material.damping = get_double(v, file, key);
+    else if (key == "friction") p.structural_material.friction = p.void_material.friction = get_double(v, file, key);
+    else if (key == "structural_material") read_material(section("structural_material"), file, key, p.structural_material);
+    else if (key == "void_material") read_material(section("void_material"), file, key, p.void_material);
+    else if (key == "relax") {
+      for (auto&& [k2, v2] : section("relax")) {
+        const std::string sub(k2.str()), full = key + "." + sub;
+        if (sub == "tolerance") p.relax_tolerance = get_double(v2, file, full);
+        else if (sub == "overlap") p.relax_overlap = get_double(v2, file, full);
+        else if (sub == "max_steps") p.relax_max_steps = get_long(v2, file, full);
+        else if (sub == "check_interval") p.relax_check_interval = get_long(v2, file, full);
+        else bad_key(file, full, "unknown key (known: tolerance, overlap, max_steps, check_interval)");
+      }
+    } else if (key == "stop") {
+      for (auto&& [k2, v2] : section("stop")) {
+        const std::string sub(k2.str()), full = key + "." + sub;
+        if (sub == "strain_energy") p.stop_strain_energy = get_double(v2, file, full);
+        else if (sub == "max_q") p.max_q = get_double(v2, file, full);
+        else bad_key(file, full, "unknown key (known: strain_energy, max_q)");
+      }
+    } else if (key == "output") {
+      for (auto&& [k2, v2] : section("output")) {
+        const std::string sub(k2.str()), full = key + "." + sub;
+        if (sub == "snapshot_every") s.snapshot_every = get_long(v2, file, full);
+        else if (sub == "checkpoint_seconds") s.checkpoint_seconds = get_double(v2, file, full);
+        else if (sub == "plots") s.plots = get_bool(v2, file, full);
+        else bad_key(file, full, "unknown key (known: snapshot_every, checkpoint_seconds, plots)");
+      }
+    } else if (key == "analysis") {
+      for (auto&& [k2, v2] : section("analysis")) {
+        const std::string sub(k2.str()), full = key + "." + sub;
+        if (sub == "window_widths") s.window_widths = get_double(v2, file, full);
+        else if (sub == "power_law_max_excess") s.power_law_max_excess = get_double(v2, file, full);
+        else bad_key(file, full, "unknown key (known: window_widths, power_law_max_excess)");
+      }
+    } else {
+      bad_key(file, key,
+              "unknown key (known: structural, voids, phi_s, radius, seed, threads, blowup_steps, "
+              "void_radius_ratio, contact_eps, void_mass_scaling, time_step_safety, skin, damping, friction, "
+              "[structural_material], [void_material], [relax], [stop], [output], [analysis])");
+    }
+  }
+}
+
+void validate_settings(const RunSettings& s) {
+  require(s.snapshot_every >= 0, "output.snapshot_every", static_cast<double>(s.snapshot_every),
+          "an integer >= 0 (0 = no snapshots)");
+  require(s.checkpoint_seconds > 0.0, "output.checkpoint_seconds", s.checkpoint_seconds, "> 0 s");
+  require(s.window_widths > 0.0, "analysis.window_widths", s.window_widths, "> 0");
+  require(s.power_law_max_excess > 0.0, "analysis.power_law_max_excess", s.power_law_max_excess, "> 0");
+}
+
+void write_checkpoint(const std::filesystem::path& dir, const generate::Vem& vem, const RunSettings& s) {
+  io::write_atomically(dir / "checkpoint.bin", [&](std::ostream& out) {
+    vem.save_checkpoint(out);
+    binary::write(out, settings_magic);
+    binary::write(out, s.snapshot_every);
+    binary::write(out, s.checkpoint_seconds);
+    binary::write(out, s.window_widths);
+    binary::write(out, s.power_law_max_excess);
+    binary::write(out, static_cast<std::uint8_t>(s.plots));
+  });
+}
+
+std::string curve_csv(const generate::Vem& vem) {
+  const auto& p = vem.params();
+  std::string csv = fmt::format(
+      "# packlab {} generate vem: N_S={} N_V={} phi_s={:.17g} r_S={:.17g} m seed={}\n"
+      "# q = r_V/r_S; cn = mean coordination of structural particles, contact distance (1+{:g}) 2 r_S; "
+      "phi_total = phi_s (1 + q^3 n) (eq. 5); energies in J (kinetic with scaled void masses); "
+      "steps = relaxation steps that led to the row\n"
+      "q,cn,phi_total,strain_energy,kinetic_energy,steps,cycle,unbalanced_force_ratio,converged\n",
+      io::version(), p.structural, p.voids, p.phi_s, p.radius, p.seed, p.contact_eps);
+  for (const auto& r : vem.curve())
+    csv += fmt::format("{:.17g},{:.17g},{:.17g},{:.17g},{:.17g},{},{},{:.6g},{}\n", r.q, r.cn, r.phi_total,
+                       r.strain_energy, r.kinetic_energy, r.steps, r.cycle, r.unbalanced_force_ratio,
+                       r.converged ? 1 : 0);
+  return csv;
+}
+
+nlohmann::json params_json(const generate::VemParams& p) {
+  const auto material = [](const dem::TypeParams& m) {
+    return nlohmann::json{{"normal_stiffness_N_per_m", m.normal_stiffness},
+                          {"shear_stiffness_N_per_m", m.shear_stiffness},
+                          {"density_kg_per_m3", m.density},
+                          {"damping", m.damping},
+                          {"friction", m.friction}};
+  };
+  return {{"structural", p.structural},
+          {"voids", p.voids},
+          {"phi_s", p.phi_s},
+          {"radius_m", p.radius},
+          {"blowup_steps", p.blowup_steps},
+          {"void_radius_ratio", p.void_radius_ratio},
+          {"structural_material", material(p.structural_material)},
+          {"void_material", material(p.void_material)},
+          {"stiffness_rule", "particle"},
+          {"contact_law", "linear"},
+          {"time_step_rule", "contacts"},
+          {"contact_eps", p.contact_eps},
+          {"relax", {{"tolerance", p.relax_tolerance},
+                     {"overlap", p.relax_overlap},
+                     {"max_steps", p.relax_max_steps},
+                     {"check_interval", p.relax_check_interval},
+                     {"criterion", "unbalanced force ratio of the touching particles < tolerance, or max overlap/(r_i+r_j) < overlap"}}},
+          {"void_mass_scaling", p.void_mass_scaling},
+          {"stop", {{"strain_energy", p.stop_strain_energy}, {"max_q", p.max_q}}},
+          {"time_step_safety", p.time_step_safety},
+          {"skin", p.skin},
+          {"threads", p.threads},
+          {"seed", p.seed}};
+}
+
+nlohmann::json finish(const std::filesystem::path& dir, const generate::Vem& vem, const RunSettings& s,
+                      bool quiet) {
+  const auto& p = vem.params();
+  const Packing structural = vem.structural_packing();
+  io::WriteOptions w;
+  w.comment = fmt::format("packlab {} generate vem N_S={} N_V={} phi_s={:.17g} r_S={:.17g} seed={} q_end={:.6g}",
+                          io::version(), p.structural, p.voids, p.phi_s, p.radius, p.seed,
+                          vem.curve().empty() ? 0.0 : vem.curve().back().q);
+  io::write_packing(structural, dir / "packing.xyz", w);
+  io::write_packing(structural, dir / "packing.vtu", w);
+  io::write_text_atomically(dir / "cn_curve.csv", curve_csv(vem));
+
+  std::vector<double> q, cn, phi;
+  for (const auto& r : vem.curve()) {
+    q.push_back(r.q);
+    cn.push_back(r.cn);
+    phi.push_back(r.phi_total);
+  }
+  const double n = p.number_ratio();
+  const double n13 = std::cbrt(n);
+  nlohmann::json report = io::report_header("generate vem");
+  analyze::InflectionOptions io_opt;
+  io_opt.window_widths = s.window_widths;
+  const analyze::Inflection inf = analyze::find_inflection(q, cn, io_opt);
+  std::vector<std::string> plot_args{(dir / "cn_curve.csv").string()};
+  if (inf.found) {
+    const auto phi_i = analyze::inflection_volume_fraction(p.phi_s, n, inf);
+    report["inflection"] = {
+        {"q", inf.x},
+        {"cn", inf.y},
+        {"slope", inf.slope},
+        {"phi_total", phi_i.value},
+        {"q_err", inf.x_err},
+        {"cn_err", inf.y_err},
+        {"slope_err", inf.slope_err},
+        {"phi_total_err", phi_i.err},
+        {"q_window", inf.x_window},
+        {"cn_window", inf.y_window},
+        {"slope_window", inf.slope_window},
+        {"width", inf.width},
+        {"fit_window", {inf.x_lo, inf.x_hi}},
+        {"points", inf.points},
+        {"r2", inf.r2},
+        {"q_n13", inf.x * n13},
+        {"slope_n13", inf.slope * n13},
+        {"method",
+         "logistic step on a linear baseline, Levenberg-Marquardt, refitted on |q - q_i| <= window_widths * w; "
+         "*_err: standard errors from the covariance; *_window: change with a 0.75x/1.25x window"}};
+    const analyze::PowerLaw pl = analyze::fit_power_law(
+        phi, cn, phi_i.value, inf.y, analyze::PowerLawOptions{0.0, s.power_law_max_excess, 4});
+    if (pl.found) {
+      report["beta"] = pl.beta;
+      report["beta_err"] = pl.beta_err;
+      report["beta_r2"] = pl.r2;
+      report["beta_points"] = pl.points;
+      report["beta_amplitude"] = pl.amplitude;
+    } else {
+      report["beta"] = nullptr;
+      report["beta_r2"] = nullptr;
+      report["beta_message"] = pl.message;
+    }
+    plot_args.insert(plot_args.end(), {"--qi", fmt::format("{:.17g}", inf.x), "--cni", fmt::format("{:.17g}", inf.y),
+                                       "--slope", fmt::format("{:.17g}", inf.slope)});
+  } else {
+    report["inflection"] = nullptr;
+    report["inflection_message"] = inf.message;
+    report["beta"] = nullptr;
+    report["beta_r2"] = nullptr;
+  }
+  const double particles = static_cast<double>(p.structural + p.voids);
+  report["structural"] = p.structural;
+  report["voids"] = p.voids;
+  report["n"] = n;
+  report["phi_s"] = p.phi_s;
+  report["box_edge_m"] = vem.box_edge();
+  report["parameters"] = params_json(p);
+  report["cycles"] = vem.cycle();
+  report["rows"] = vem.curve().size();
+  report["q_end"] = vem.curve().empty() ? 0.0 : vem.curve().back().q;
+  report["steps"] = vem.total_steps();
+  report["limited_relaxations"] = vem.limited_relaxations();
+  report["stop_reason"] = generate::vem_stop_name(vem.stop_reason());
+  const double m_s = p.structural_material.density * 4.0 / 3.0 * 3.14159265358979323846 * p.radius * p.radius * p.radius;
+  report["mass_scaling"] = {
+      {"void_mass_scaling", p.void_mass_scaling},
+      {"void_mass_floor_kg", vem.void_mass_floor()},
+      {"structural_mass_kg", m_s},
+      {"unscaled_above_q", p.void_mass_scaling > 0.0
+                               ? std::cbrt(vem.void_mass_floor() / (p.void_material.density * 4.0 / 3.0 *
+                                                                      3.14159265358979323846 * p.radius * p.radius *
+                                                                      p.radius))
+                               : 0.0},
+      {"note", "void mass = max(true mass, c m_S k_V/k_S); the voids have their true mass for q above unscaled_above_q"}};
+  report["seconds"] = vem.seconds();
+  report["particle_steps_per_second"] =
+      vem.seconds() > 0.0 ? particles * static_cast<double>(vem.total_steps()) / vem.seconds() : 0.0;
+  report["seconds_per_cycle"] = vem.cycle() > 0 ? vem.seconds() / static_cast<double>(vem.cycle()) : 0.0;
+  report["threads"] = vem.engine().threads();
+  io::write_report(dir / "report.json", report);
+  io::PlotOptions po;
+  po.enabled = s.plots;
+  const bool plotted = io::make_plot("cn_curve", plot_args, dir / "cn_curve.png", po);
+  if (!quiet) {
+    fmt::print("VEM: {} cycles, q_end = {:.4f} ({}), {} steps in {:.1f} s ({:.3g} particle-steps/s)\n", vem.cycle(),
+               report["q_end"].get<double>(), generate::vem_stop_name(vem.stop_reason()), vem.total_steps(),
+               vem.seconds(), report["particle_steps_per_second"].get<double>());
+    if (inf.found)
+      fmt::print("inflection: q_i = {:.4f} +- {:.4f}, CN_i = {:.3f}, slope = {:.2f}, Phi_T,i = {:.4f}; "
+                 "q_i n^1/3 = {:.3f}, slope n^1/3 = {:.2f}\n",
+                 inf.x, std::hypot(inf.x_err, inf.x_window), inf.y, inf.slope,
+                 report["inflection"]["phi_total"].get<double>(), inf.x * n13, inf.slope * n13);
+    else
+      fmt::print("inflection: not found ({})\n", inf.message);
+    fmt::print("packing: {}\nCN(q) curve: {}{}\nreport: {}\n", (dir / "packing.xyz").string(),
+               (dir / "cn_curve.csv").string(), plotted ? ", " + (dir / "cn_curve.png").string() : std::string(),
+               (dir / "report.json").string());
+  }
+  return report;
+}
+
+}  // namespace
+
+void add_generate_vem(CLI::App& generate) {
+  struct Options {
+    std::string config, out, resume;
+    generate::VemParams params;
+    RunSettings settings;
+    bool no_plots = false;
+    bool quiet = false;
+    bool check = false;
+  };
+  auto opt = std::make_shared<Options>();
+  auto* cmd = generate.add_subcommand(
+      "vem", "Void expansion method: porous packings by growing void particles; CN(q) curve and its inflection point");
+  cmd->add_option("--config", opt->config, "TOML file with any parameter (docs/vem.md); flags override it");
+  cmd->add_option("--structural", opt->params.structural, "Number of structural particles N_S")->capture_default_str();
+  cmd->add_option("--voids", opt->params.voids, "Number of void particles N_V")->capture_default_str();
+  cmd->add_option("--phi-s", opt->params.phi_s, "Volume fraction of the structural particles Phi_S")
+      ->capture_default_str();
+  cmd->add_option("--radius", opt->params.radius, "Structural particle radius r_S [m]")->capture_default_str();
+  cmd->add_option("--seed", opt->params.seed, "Random seed")->capture_default_str();
+  cmd->add_option("--threads", opt->params.threads, "OpenMP threads (0 = all cores)")->capture_default_str();
+  cmd->add_option("--max-q", opt->params.max_q, "Largest q = r_V/r_S recorded")->capture_default_str();
+  cmd->add_option("--snapshot-every", opt->settings.snapshot_every,
+                  "Write the structural packing before every K-th void increment (0 = never)")
+      ->capture_default_str();
+  cmd->add_option("--checkpoint-seconds", opt->settings.checkpoint_seconds,
+                  "Wall-clock seconds between checkpoints (DIR/checkpoint.bin)")
+      ->capture_default_str();
+  cmd->add_option("--out", opt->out, "Output folder");
+  cmd->add_option("--resume", opt->resume, "Continue the run whose checkpoint is in this folder");
+  cmd->add_flag("--no-plots", opt->no_plots, "Do not make PNG plots");
+  cmd->add_flag("--check", opt->check, "Validate the parameters, print the set-up and exit without running");
+  cmd->add_flag("--quiet", opt->quiet, "No progress output");
+  cmd->callback([opt, cmd] {
+    const auto given = [&](const char* name) { return cmd->count(name) > 0; };
+    std::unique_ptr<generate::Vem> vem;
+    RunSettings settings;
+    std::filesystem::path dir;
+    if (!opt->resume.empty()) {
+      for (const char* name : {"--config", "--structural", "--voids", "--phi-s", "--radius", "--seed", "--max-q"})
+        if (given(name))
+          fail_input(fmt::format("{} cannot be combined with --resume: the run continues with its saved parameters",
+                                 name));
+      if (given("--out") && std::filesystem::path(opt->out) != std::filesystem::path(opt->resume))
+        fail_input("--out: a resumed run writes into its own folder (--resume DIR); drop --out");
+      dir = opt->resume;
+      std::ifstream in(dir / "checkpoint.bin", std::ios::binary);
+      if (!in) fail_input(fmt::format("--resume = {}: no checkpoint.bin in this folder", opt->resume));
+      vem = generate::Vem::resume(in, given("--threads") ? opt->params.threads : 0);
+      std::uint64_t magic = 0;
+      std::uint8_t plots = 1;
+      binary::read(in, magic, "command settings");
+      if (magic != settings_magic) fail_input("checkpoint is damaged: command settings");
+      binary::read(in, settings.snapshot_every, "snapshot_every");
+      binary::read(in, settings.checkpoint_seconds, "checkpoint_seconds");
+      binary::read(in, settings.window_widths, "window_widths");
+      binary::read(in, settings.power_law_max_excess, "power_law_max_excess");
+      binary::read(in, plots, "plots");
+      settings.plots = plots != 0;
+      if (given("--snapshot-every")) settings.snapshot_every = opt->settings.snapshot_every;
+      if (given("--checkpoint-seconds")) settings.checkpoint_seconds = opt->settings.checkpoint_seconds;
+      if (opt->no_plots) settings.plots = false;
+      validate_settings(settings);
+    } else {
+      if (opt->out.empty()) fail_input("--out: required (the output folder), or --resume DIR");
+      dir = opt->out;
+      generate::VemParams params;
+      if (!opt->config.empty()) read_config(opt->config, params, settings);
+      const generate::VemParams& f = opt->params;
+      if (given("--structural")) params.structural = f.structural;
+      if (given("--voids")) params.voids = f.voids;
+      if (given("--phi-s")) params.phi_s = f.phi_s;
+      if (given("--radius")) params.radius = f.radius;
+      if (given("--seed")) params.seed = f.seed;
+      if (given("--threads")) params.threads = f.threads;
+      if (given("--max-q")) params.max_q = f.max_q;
+      if (given("--snapshot-every")) settings.snapshot_every = opt->settings.snapshot_every;
+      if (given("--checkpoint-seconds")) settings.checkpoint_seconds = opt->settings.checkpoint_seconds;
+      if (opt->no_plots) settings.plots = false;
+      params.validate();
+      validate_settings(settings);
+      if (opt->check) {
+        const double l = generate::vem_box_edge(params.structural, params.radius, params.phi_s);
+        fmt::print("generate vem: N_S = {}, N_V = {} (n = {:g}), Phi_S = {:g}, r_S = {:g} m, box edge {:.6g} m "
+                   "({:.3f} r_S), q from {:g} in steps of {:g} to at most {:g}; parameters valid\n",
+                   params.structural, params.voids, params.number_ratio(), params.phi_s, params.radius, l,
+                   l / params.radius, params.void_radius_ratio, params.void_radius_ratio, params.max_q);
+        return;
+      }
+      io::ensure_directory(dir);
+      vem = std::make_unique<generate::Vem>(params);
+    }
+    const auto& p = vem->params();
+    if (settings.snapshot_every > 0) io::ensure_directory(dir / "snapshots");
+    Progress progress("vem", static_cast<long>(std::ceil(p.max_q / p.void_radius_ratio)), !opt->quiet);
+    const double energy_scale =
+        static_cast<double>(p.structural) * p.structural_material.normal_stiffness * p.radius * p.radius;
+    generate::Vem* v = vem.get();
+    vem->on_row = [&, v](const generate::VemRow& row) {
+      progress.update(row.cycle, fmt::format("q {:.3f} CN {:.3f} E/(N k r^2) {:.2e}", row.q, row.cn,
+                                             row.strain_energy / energy_scale));
+      if (settings.snapshot_every > 0 && row.cycle % settings.snapshot_every == 0) {
+        io::WriteOptions w;
+        w.comment = fmt::format("packlab generate vem snapshot cycle={} q={:.17g} cn={:.6g}", row.cycle, row.q, row.cn);
+        io::write_packing(v->structural_packing(), dir / "snapshots" / fmt::format("cycle_{:05d}.xyz", row.cycle), w);
+      }
+    };
+    // Run in pieces of about 2e6 particle-steps; checkpoint between pieces (a consistent state).
+    const long chunk = std::max(100L, 2000000L / std::max(1L, p.structural + p.voids));
+    auto last_checkpoint = std::chrono::steady_clock::now();
+    while (!vem->run(chunk)) {
+      const auto now = std::chrono::steady_clock::now();
+      if (std::chrono::duration<double>(now - last_checkpoint).count() >= settings.checkpoint_seconds) {
+        write_checkpoint(dir, *vem, settings);
+        last_checkpoint = now;
+      }
+    }
+    progress.finish();
+    write_checkpoint(dir, *vem, settings);
+    finish(dir, *vem, settings, opt->quiet);
+  });
+}
+
+}  // namespace packlab::cli

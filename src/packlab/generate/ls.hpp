@@ -1,0 +1,217 @@
+// Lubachevsky–Stillinger growth (scrm-bimodal-packs.txt §3.1): event-driven molecular dynamics
+// of hard spheres whose diameters grow linearly in time, in a periodic box, for any number of
+// size classes.
+//
+// Model (every choice is a named parameter below):
+//  - Diameters scale together: D_i(t) = D_i^1 s(t), s(t) = s0 + G t. D_i^1 are the diameters
+//    that would fill the box (volume fraction 1 at s = 1), so phi(t) = s(t)^3. Starting from
+//    points, s0 = 0: a_k(t) = a0_k t as in the paper.
+//  - Unit masses, temperature kT = m v_th^2 with the per-component thermal speed v_th equal to
+//    the largest diameter D_max^1: the growth rate G is then dimensionless, the rate of growth
+//    of the largest diameter in units of D_max^1 per time D_max^1 / v_th.
+//  - Collision of i and j (unit normal n from i to j, normal relative speed u = (v_j - v_i).n):
+//    the normal components are exchanged (elastic, momentum conserved) and each sphere gets
+//    `separation_boost` times the growth speed of the contact distance, sigma_dot = (D_i^1 +
+//    D_j^1) G / 2, pushing them apart: u' = -u + 2 b sigma_dot. b >= 1 makes the pair separate
+//    faster than the contact distance grows (b = 2 as in Donev–Torquato–Stillinger's and
+//    PackingGeneration's codes).
+//  - Collision times: the smaller positive root of |dx + dv t| = sigma + sigma_dot t (eq. 8),
+//    for the periodic image given by the cell stencil.
+//  - Event calendar: one pending event per particle (its earliest collision or neighbour-list
+//    transfer) in an indexed binary heap; a predicted collision carries its partner's collision
+//    counter and is discarded when the partner's velocity changed since (per-particle
+//    invalidation). Particles are advanced lazily (each keeps its own time stamp). A collision
+//    later than the partner's own next event is left to the partner (it predicts again then).
+//  - Neighbours (Donev, Torquato & Stillinger 2005): each sphere has a bounding sphere, its
+//    radius plus `neighbor_skin` x its diameter; spheres are neighbours when their bounding
+//    spheres overlap, and only neighbours are tested for collisions. When a sphere reaches its
+//    bounding sphere (a transfer event) the bounding sphere is re-centred and the sphere's list
+//    rebuilt from a cell grid of bounding-sphere centres (one grid per size class, so small
+//    spheres never scan cells sized for large ones). Near jamming spheres rattle far inside
+//    their bounding spheres and lists stay valid for whole blocks. The skin adapts per block:
+//    larger in the fluid (long free paths), down to 0.5 % of a diameter near jamming.
+//  - Blocks: after every `events_per_block` x N events all particles are brought to the same
+//    time, velocities are rescaled to kT (the boost heats the system), the reduced pressure
+//    p = PV/(NkT) of the block is measured from the collision virial (growth part excluded),
+//    particles are re-sorted along a Morton curve and all events are predicted anew.
+//  - Stops at the target volume fraction (exactly: the last block ends at the time where
+//    s^3 = phi), or at jamming: reduced pressure >= max_reduced_pressure (1e12 by default, the
+//    criterion of Skoge–Donev and PackingGeneration), or after max_blocks blocks.
+//  - The result is checked by an independent pair search: any pair closer than its contact
+//    distance has its radii scaled down by that factor (reported; of order 1e-15).
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "packlab/core/packing.hpp"
+#include "packlab/core/random.hpp"
+
+namespace packlab::generate {
+
+// Size classes of a polydisperse packing: relative diameters and their number or volume
+// fractions. One class by default.
+struct SizeClasses {
+  std::vector<double> sizes{1.0};  // relative diameters (any common scale)
+  std::vector<double> fractions;   // one per class; empty = equal numbers
+  bool volume_fractions = false;   // fractions are volume fractions (else number fractions)
+
+  void validate() const;  // InputError naming the key
+  // Number fraction of each class.
+  std::vector<double> number_fractions() const;
+  // Particles per class for n in total (largest-remainder rounding, sums to n).
+  std::vector<long> counts(long n) const;
+};
+
+struct LsParams {
+  double growth_rate = 0.01;             // G = ds/dt (see above); 0 = no growth (equilibration)
+  double target_volume_fraction = 0.0;   // stop exactly here; 0 = grow until jammed
+  double max_reduced_pressure = 1e12;    // jamming criterion
+  double events_per_block = 20.0;        // per particle, between velocity rescalings
+  long max_blocks = 0;                   // 0 = no limit
+  double max_events_per_particle = 1e7;  // safety limit
+  double separation_boost = 2.0;         // b above, >= 1
+  double neighbor_skin = 0.1;            // initial bounding sphere = radius + skin x diameter; adapted
+                                         // per block so transfers stay 10-50 % of collisions
+  void validate() const;
+};
+
+enum class LsStop { target_reached, jammed, max_blocks, max_events };
+std::string ls_stop_name(LsStop stop);
+
+// State after a block (and the final one).
+struct LsStatus {
+  long blocks = 0;
+  long long collisions = 0;
+  long long transfers = 0;       // neighbour-list transfers (a sphere reached its bounding sphere)
+  long long stale = 0;           // events discarded by the invalidation counters
+  double volume_fraction = 0.0;
+  double scale = 0.0;            // s
+  double reduced_pressure = 1.0; // of the last block
+  double time = 0.0;             // simulated time since the start
+  double seconds = 0.0;          // wall time
+  double cpu_seconds = 0.0;      // processor time of this process (= wall time on an idle core)
+  LsStop stop = LsStop::max_blocks;
+  long long events() const { return collisions + transfers; }  // discarded (stale) events not counted
+};
+
+class LsSimulation {
+ public:
+  // Starts from a packing whose spheres do not overlap (beyond round-off); the radii grow in
+  // proportion. Any number of distinct radii: particles with equal radii form a class.
+  LsSimulation(const Packing& start, const LsParams& params, Random& rng);
+  // Starts from points with zero radii (s0 = 0); `unit_radius` are the radii D_i^1 / 2 that
+  // fill the box. The box must be periodic on every axis.
+  LsSimulation(const Box& box, std::vector<Vec3> points, std::vector<double> unit_radius, const LsParams& params,
+               Random& rng);
+
+  // Runs blocks until a stop criterion; on_block is called after each block.
+  LsStatus run(const std::function<void(const LsStatus&)>& on_block = {});
+  // The packing now (particles in their original order, radii at the current scale, positions
+  // wrapped into the box, velocities included). Overlaps are checked: see overlap_correction().
+  Packing packing();
+  const LsStatus& status() const { return status_; }
+  void set_params(const LsParams& params);
+  const LsParams& params() const { return params_; }
+  // 1 - (factor the radii were scaled by in the last packing() to remove overlaps), >= 0.
+  double overlap_correction() const { return overlap_correction_; }
+  // Replaces positions (e.g. after shaking); same particles, same order as packing().
+  void set_positions(const std::vector<Vec3>& position);
+
+  // Collision time of two spheres, eq. (8): smallest t >= 0 with |dx + dv t| = sigma + sdot t,
+  // where dx, dv are the separation and relative velocity; +inf when they never touch.
+  // Overlapping pairs that approach collide at once (t = 0).
+  static double collision_time(const Vec3& dx, const Vec3& dv, double sigma, double sigma_dot);
+  // Velocities after a collision (unit masses): normal n from i to j, boost b, growth speed sdot.
+  static void collide(Vec3& vi, Vec3& vj, const Vec3& n, double sigma_dot, double boost);
+
+ private:
+  struct Body {  // one cache line
+    Vec3 x;       // position at time t (box coordinates relative to box.lo)
+    double t;     // time stamp
+    Vec3 v;
+    double rho;   // radius at s = 1
+  };
+  struct Event {
+    double time;
+    int partner;          // >= 0 collision partner; -1 transfer; -2 none
+    std::uint32_t count;  // partner's collision counter at prediction
+  };
+  struct Grid {
+    int n[3] = {1, 1, 1};
+    double h[3] = {1, 1, 1};
+    int cap = 8;
+    std::vector<int> slots;  // n cells x cap
+    std::vector<int> fill;   // per cell
+  };
+
+  void init(const Box& box, std::vector<Vec3> points, std::vector<double> unit_radius, double s0, Random& rng);
+  void start_block();
+  bool run_block();  // false when stopped
+  void sync_all(double t);
+  void build_grids();
+  void insert(int i);
+  void remove(int i);
+  void build_lists();
+  void add_neighbor(int i, std::uint32_t entry);
+  void drop_neighbor(int i, std::uint32_t entry);
+  void find_neighbors(int i, bool only_greater);
+  void transfer(int i);
+  void predict(int i);
+  void heap_update(int i);
+  void heap_build();
+  double s_at(double t) const { return s0_ + params_.growth_rate * t; }
+
+  LsParams params_;
+  Box box_;
+  Vec3 origin_;
+  int nclass_ = 1;
+  std::vector<double> class_rho_;        // radius at s = 1 per class
+  std::vector<double> reach_;            // nclass x nclass: largest bounding-sphere reach this block
+  std::vector<Body> body_;
+  std::vector<int> cls_, id_;
+  std::vector<std::uint32_t> count_;
+  std::vector<Event> ev_;
+  std::vector<int> cell_, slot_;
+  std::vector<std::array<int, 3>> cc_;
+  std::vector<Vec3> center_;             // bounding-sphere centres
+  std::vector<double> bound_;            // bounding-sphere radii
+  std::vector<double> skin_;             // per class: bounding radius - radius at build
+  std::vector<double> bound_cap_;        // per class: largest bounding radius this block
+  std::vector<int> list_cap_;            // per class
+  std::vector<std::size_t> list_base_;   // per particle
+  std::vector<int> list_fill_;           // per particle
+  std::vector<std::uint32_t> list_;      // entries j * 32 + image code
+  std::array<Vec3, 27> offset_{};
+  std::vector<Grid> grid_;
+  std::vector<double> hkey_;
+  std::vector<int> hid_, hpos_;
+  double s0_ = 0.0, phi1_ = 1.0, v_thermal_ = 1.0;
+  double t_end_ = 0.0, t_target_ = 0.0, t_total_ = 0.0;
+  bool target_in_block_ = false;
+  double virial_ = 0.0;
+  double skin_rel_ = 0.1;
+  LsStatus status_;
+  double overlap_correction_ = 0.0;
+};
+
+// Random points in a periodic cube and their classes for `particles` spheres of the given
+// classes; the cube is sized so that the spheres reach `volume_fraction` when the largest
+// radius equals `radius`.
+struct LsStart {
+  Box box;
+  std::vector<Vec3> points;
+  std::vector<double> unit_radius;  // fill the box at s = 1
+  std::vector<int> klass;
+};
+LsStart make_ls_start(long particles, const SizeClasses& classes, double radius, double volume_fraction,
+                      Random& rng);
+
+// Smallest d_ij / (r_i + r_j) over all pairs (periodic images included), by the core
+// neighbour list: the independent overlap check. 1 when no pair is within contact range.
+double min_contact_ratio(const Packing& packing);
+
+}  // namespace packlab::generate

@@ -1,0 +1,261 @@
+// Lubachevsky-Stillinger growth: two-body kernels against exact results, overlap-free output at
+// an exact volume fraction, equilibrium pressure against Carnahan-Starling, jamming density.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <limits>
+#include <nlohmann/json.hpp>
+#include <numbers>
+
+#include "../cli/cli_runner.hpp"
+#include "packlab/core/error.hpp"
+#include "packlab/generate/lattice.hpp"
+#include "packlab/generate/ls.hpp"
+#include "packlab/io/packing_io.hpp"
+
+using namespace packlab;
+using generate::LsSimulation;
+
+namespace {
+
+generate::LsSimulation make_sim(long n, const generate::SizeClasses& classes, double phi_box,
+                                const generate::LsParams& p, Random& rng) {
+  const generate::LsStart s = generate::make_ls_start(n, classes, 0.5, phi_box, rng);
+  return generate::LsSimulation(s.box, s.points, s.unit_radius, p, rng);
+}
+
+}  // namespace
+
+TEST(LsKernel, CollisionTimeOfHeadOnAndRecedingGrowingSpheres) {
+  // Approaching: d - v t = sigma + sdot t.
+  const double d = 3.0, v = 0.7, sigma = 1.2, sdot = 0.1;
+  EXPECT_NEAR(LsSimulation::collision_time({d, 0, 0}, {-v, 0, 0}, sigma, sdot), (d - sigma) / (v + sdot), 1e-15);
+  // Receding slower than the growth: d + v t = sigma + sdot t.
+  EXPECT_NEAR(LsSimulation::collision_time({d, 0, 0}, {0.05, 0, 0}, sigma, sdot), (d - sigma) / (sdot - 0.05), 1e-13);
+  // Receding faster than the growth: never.
+  EXPECT_TRUE(std::isinf(LsSimulation::collision_time({d, 0, 0}, {0.5, 0, 0}, sigma, sdot)));
+  // Missing each other without growth: impact parameter 2 > sigma.
+  EXPECT_TRUE(std::isinf(LsSimulation::collision_time({d, 2.0, 0}, {-1, 0, 0}, sigma, 0.0)));
+  // Oblique: closest approach b = 1 < sigma: t = (d - sqrt(sigma^2 - b^2)) / v.
+  EXPECT_NEAR(LsSimulation::collision_time({d, 1.0, 0}, {-v, 0, 0}, sigma, 0.0),
+              (d - std::sqrt(sigma * sigma - 1.0)) / v, 1e-14);
+  // Overlapping and approaching: at once.
+  EXPECT_EQ(LsSimulation::collision_time({1.0, 0, 0}, {-1, 0, 0}, sigma, 0.0), 0.0);
+}
+
+TEST(LsKernel, ElasticCollisionConservesMomentumAndEnergyAndGrowthSeparates) {
+  Random rng(3);
+  for (int trial = 0; trial < 100; ++trial) {
+    const Vec3 n = rng.unit_vector();
+    const Vec3 vi0{rng.normal(), rng.normal(), rng.normal()}, vj0{rng.normal(), rng.normal(), rng.normal()};
+    Vec3 vi = vi0, vj = vj0;
+    LsSimulation::collide(vi, vj, n, 0.0, 2.0);
+    const Vec3 p0 = vi0 + vj0, p1 = vi + vj;
+    EXPECT_NEAR(norm(p1 - p0), 0.0, 1e-14);
+    EXPECT_NEAR(norm2(vi) + norm2(vj), norm2(vi0) + norm2(vj0), 1e-13);
+    EXPECT_NEAR(dot(vj - vi, n), -dot(vj0 - vi0, n), 1e-14);
+    // Tangential components unchanged.
+    EXPECT_NEAR(norm((vi - n * dot(vi, n)) - (vi0 - n * dot(vi0, n))), 0.0, 1e-14);
+    // With growth: momentum conserved, u' = -u + 2 b sdot > sdot.
+    const double sdot = 0.3, b = 2.0;
+    vi = vi0;
+    vj = vj0;
+    LsSimulation::collide(vi, vj, n, sdot, b);
+    EXPECT_NEAR(norm(vi + vj - p0), 0.0, 1e-14);
+    EXPECT_NEAR(dot(vj - vi, n), -dot(vj0 - vi0, n) + 2 * b * sdot, 1e-14);
+  }
+}
+
+TEST(Ls, ReachesTheTargetVolumeFractionExactlyWithoutOverlap) {
+  Random rng(7);
+  generate::LsParams p;
+  p.growth_rate = 0.05;
+  p.target_volume_fraction = 0.55;
+  auto sim = make_sim(400, {}, 0.55, p, rng);
+  const generate::LsStatus st = sim.run();
+  EXPECT_EQ(st.stop, generate::LsStop::target_reached);
+  const Packing packing = sim.packing();
+  EXPECT_NEAR(packing.volume_fraction(), 0.55, 1e-12);
+  EXPECT_GE(generate::min_contact_ratio(packing), 1.0 - 1e-12);
+  EXPECT_LT(sim.overlap_correction(), 1e-12);
+  EXPECT_GT(st.collisions, 10000);
+}
+
+TEST(Ls, BimodalClassesKeepTheirCountsAndSizeRatio) {
+  Random rng(11);
+  generate::SizeClasses c;
+  c.sizes = {1.0, 0.313};
+  c.fractions = {0.75, 0.25};
+  c.volume_fractions = true;
+  const std::vector<long> counts = c.counts(2000);
+  EXPECT_EQ(counts[0] + counts[1], 2000);
+  EXPECT_EQ(counts[0], 168);  // the paper's N^(1) = 168 large spheres for N = 2000
+  generate::LsParams p;
+  p.growth_rate = 0.05;
+  p.target_volume_fraction = 0.6;
+  auto sim = make_sim(600, c, 0.6, p, rng);
+  sim.run();
+  const Packing packing = sim.packing();
+  EXPECT_NEAR(packing.volume_fraction(), 0.6, 1e-12);
+  EXPECT_GE(generate::min_contact_ratio(packing), 1.0 - 1e-12);
+  double rmax = 0, rmin = 1e9;
+  long large = 0;
+  for (double r : packing.radius) {
+    rmax = std::max(rmax, r);
+    rmin = std::min(rmin, r);
+  }
+  for (double r : packing.radius) large += r > 0.5 * (rmax + rmin);
+  EXPECT_NEAR(rmin / rmax, 0.313, 1e-12);
+  EXPECT_EQ(large, c.counts(600)[0]);
+  // Volume ratio small / large = 0.333.
+  double vl = 0, vs = 0;
+  for (double r : packing.radius) (r > 0.5 * (rmax + rmin) ? vl : vs) += r * r * r;
+  EXPECT_NEAR(vs / vl, 1.0 / 3.0, 0.02);
+}
+
+TEST(Ls, EquilibriumPressureMatchesCarnahanStarling) {
+  // Grow to phi = 0.45, then equilibrate without growth: the reduced pressure PV/NkT of a hard-
+  // sphere fluid is (1 + phi + phi^2 - phi^3) / (1 - phi)^3 = 9.38 (Carnahan-Starling, < 1 %).
+  Random rng(5);
+  generate::LsParams p;
+  p.growth_rate = 0.05;
+  p.target_volume_fraction = 0.45;
+  auto sim = make_sim(500, {}, 0.45, p, rng);
+  sim.run();
+  p.growth_rate = 0.0;
+  p.max_blocks = 5;
+  sim.set_params(p);
+  sim.run();  // equilibrate
+  p.max_blocks = 1;
+  sim.set_params(p);
+  double sum = 0;
+  const int blocks = 30;
+  for (int b = 0; b < blocks; ++b) sum += sim.run().reduced_pressure;
+  const double phi = 0.45;
+  const double cs = (1 + phi + phi * phi - phi * phi * phi) / std::pow(1 - phi, 3);
+  EXPECT_NEAR(sum / blocks, cs, 0.03 * cs);
+  EXPECT_NEAR(sim.packing().volume_fraction(), 0.45, 1e-12);
+}
+
+TEST(Ls, FastCompressionJamsNearRandomClosePacking) {
+  Random rng(9);
+  generate::LsParams p;
+  p.growth_rate = 0.05;
+  p.max_reduced_pressure = 1e8;
+  auto sim = make_sim(500, {}, 0.64, p, rng);
+  const generate::LsStatus st = sim.run();
+  EXPECT_EQ(st.stop, generate::LsStop::jammed);
+  const Packing packing = sim.packing();
+  EXPECT_GT(packing.volume_fraction(), 0.615);
+  EXPECT_LT(packing.volume_fraction(), 0.66);
+  EXPECT_GE(generate::min_contact_ratio(packing), 1.0 - 1e-12);
+}
+
+TEST(Ls, SameSeedGivesTheSamePacking) {
+  auto run = [](std::uint64_t seed) {
+    Random rng(seed);
+    generate::LsParams p;
+    p.growth_rate = 0.1;
+    p.target_volume_fraction = 0.5;
+    auto sim = make_sim(200, {}, 0.5, p, rng);
+    sim.run();
+    return sim.packing();
+  };
+  const Packing a = run(1), b = run(1), c = run(2);
+  EXPECT_EQ(a.position, b.position);
+  EXPECT_NE(a.position, c.position);
+}
+
+TEST(Ls, GrowsFromAnExistingPacking) {
+  generate::LatticeParams lp;
+  lp.type = generate::LatticeType::sc;
+  lp.cells = {6, 6, 6};
+  lp.radius = 0.4;
+  lp.gap = 0.2;  // SC at phi = pi/6 (0.8)^3 = 0.268
+  const Packing start = generate::make_lattice(lp);
+  Random rng(4);
+  generate::LsParams p;
+  p.growth_rate = 0.05;
+  p.target_volume_fraction = 0.5;
+  LsSimulation sim(start, p, rng);
+  EXPECT_NEAR(sim.status().volume_fraction, start.volume_fraction(), 1e-12);
+  sim.run();
+  const Packing out = sim.packing();
+  EXPECT_NEAR(out.volume_fraction(), 0.5, 1e-12);
+  EXPECT_GE(generate::min_contact_ratio(out), 1.0 - 1e-12);
+  EXPECT_EQ(out.size(), start.size());
+}
+
+TEST(Ls, BadInputIsRejected) {
+  Random rng(1);
+  generate::SizeClasses c;
+  c.sizes = {1.0, -0.3};
+  EXPECT_THROW(c.validate(), InputError);
+  c.sizes = {1.0, 0.3};
+  c.fractions = {0.5};
+  EXPECT_THROW(c.validate(), InputError);
+  generate::LsParams p;
+  p.target_volume_fraction = 1.2;
+  EXPECT_THROW(p.validate(), InputError);
+  p.target_volume_fraction = 0.5;
+  p.growth_rate = -1;
+  EXPECT_THROW(p.validate(), InputError);
+  p.growth_rate = 0.0;  // nothing would stop it
+  EXPECT_THROW(p.validate(), InputError);
+  p.growth_rate = 0.1;
+  // Four spheres at phi 0.6: the box is less than two diameters.
+  EXPECT_THROW(make_sim(4, {}, 0.6, p, rng), InputError);
+  // Overlapping start.
+  Packing overlap;
+  overlap.box.length = {10, 10, 10};
+  overlap.add({1, 1, 1}, 0.5);
+  overlap.add({1.5, 1, 1}, 0.5);
+  EXPECT_THROW(LsSimulation(overlap, p, rng), InputError);
+}
+
+// ---------------------------------------------------------------------------------------------
+// Command line: generate ls, generate scrm and shake write their folder; bad input exits with 2.
+
+TEST(LsCli, GenerateLsScrmAndShakeWriteTheirFolders) {
+  test::TempDir dir("ls-cli");
+  const auto ls = test::run_packlab("generate ls --phi 0.5 --particles 300 --growth-rate 0.1 --seed 3 --no-plots "
+                                    "--quiet --out " + dir.file("ls"));
+  ASSERT_EQ(ls.exit_code, 0) << ls.output;
+  for (const char* f : {"packing.xyz", "packing.vtu", "ls_log.csv", "rdf.csv", "windows.csv", "report.json"})
+    EXPECT_TRUE(std::filesystem::exists(dir.path() / "ls" / f)) << f;
+  std::ifstream in(dir.path() / "ls" / "report.json");
+  const auto report = nlohmann::json::parse(in);
+  EXPECT_NEAR(report["results"]["volume_fraction"].get<double>(), 0.5, 1e-12);
+  EXPECT_EQ(report["results"]["stop"], "target_reached");
+  EXPECT_GT(report["results"]["collisions_per_second"].get<double>(), 0.0);
+  EXPECT_GT(report["results"]["rdf"]["contact_value"].get<double>(), 1.0);
+  const Packing p = io::read_packing(dir.path() / "ls" / "packing.xyz");
+  EXPECT_EQ(p.size(), 300u);
+  EXPECT_GE(generate::min_contact_ratio(p), 1.0 - 1e-12);
+
+  const auto sh = test::run_packlab("shake " + dir.file("ls/packing.xyz") + " --sweeps 2 --seed 1 --no-plots --quiet --out " +
+                                    dir.file("shake"));
+  ASSERT_EQ(sh.exit_code, 0) << sh.output;
+  std::ifstream in2(dir.path() / "shake" / "report.json");
+  const auto r2 = nlohmann::json::parse(in2);
+  EXPECT_EQ(r2["results"]["visits"].get<long>(), 600);
+  EXPECT_GE(r2["results"]["min_contact_ratio"].get<double>(), 1.0 - 1e-12);
+
+  const auto sc = test::run_packlab("generate scrm --phi 0.45 --particles 300 --sizes 1,0.5 --volume-fractions 0.7,0.3 "
+                                    "--growth-rate 0.1 --final-shakes 2 --seed 2 --no-plots --quiet --out " +
+                                    dir.file("scrm"));
+  ASSERT_EQ(sc.exit_code, 0) << sc.output;
+  EXPECT_TRUE(std::filesystem::exists(dir.path() / "scrm" / "rdf_partial.csv"));
+  std::ifstream in3(dir.path() / "scrm" / "report.json");
+  const auto r3 = nlohmann::json::parse(in3);
+  EXPECT_NEAR(r3["results"]["volume_fraction"].get<double>(), 0.45, 1e-12);
+  EXPECT_EQ(r3["results"]["rdf"]["pairs"].size(), 3u);
+
+  const auto bad = test::run_packlab("generate ls --phi 1.5 --particles 100 --out " + dir.file("bad"));
+  EXPECT_EQ(bad.exit_code, 2) << bad.output;
+  EXPECT_NE(bad.output.find("target_volume_fraction = 1.5"), std::string::npos) << bad.output;
+  const auto bad2 = test::run_packlab("generate ls --phi 0.5 --sizes 1,0.3 --number-fractions 1 --out " + dir.file("bad"));
+  EXPECT_EQ(bad2.exit_code, 2) << bad2.output;
+}
