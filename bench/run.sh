@@ -32,12 +32,17 @@ else
   echo "(peer scripts not found at $PEERS: LAMMPS ratio skipped)"
 fi
 
-# Every other benchmark program prints its own rates.
-for b in "$BUILD"/bench_*; do
-  name=$(basename "$b")
-  [ "$name" = bench_relax ] && continue
-  [ -x "$b" ] || continue
-  echo
-  echo "== $name =="
-  "$b"
-done
+# The other capabilities' benchmarks, each printing its own rates. BENCH_QUICK=1 keeps the
+# long end-to-end cases short (rates only).
+quick=${BENCH_QUICK:-0}
+run() { echo; echo "== $* =="; "$BUILD/$@"; }
+run bench_analyze 1
+run bench_ls 10000 0.04          # LS to jamming, 10^4 monodisperse (PackingGeneration: 87 s at rate 1e-2)
+run bench_ls 10000 3             # fast compression (PackingGeneration: 22.7 s at rate 1e-1)
+run bench_ls 10000 0.015 0.6 0.313 0.333   # bimodal case of the paper to c = 0.6
+if [ "$quick" = 1 ]; then
+  run bench_vem 1 8000 2000 0.4 20          # Fig. 1 case, first 20 void cycles (rates)
+else
+  run bench_ls 100000 3                     # 10^5 monodisperse (PackingGeneration: 555 s)
+  run bench_vem 1                           # Fig. 1 case end to end (about 20 minutes)
+fi
