@@ -78,7 +78,7 @@ TEST(Engine, EnergyIsConservedWithoutDamping) {
   config.types[0].damping = 0.0;
   config.time_step_safety = 0.05;
   const EnergyRun r = vibrate(p, config, 100'000, static_energy);
-  // Measured: worst 1.4e-3, drift below that (time-step-size fluctuations, no trend).
+  // Measured: worst 1.0e-3 (8.6e-4 at the end: an O(dt^2) offset set early, not growing).
   EXPECT_LT(r.worst_error, 5e-3) << "worst " << r.worst_error << " drift " << r.final_error;
   EXPECT_GT(r.contacts_start, 4 * p.size() / 2);  // jammed: the energy lives in contacts
 }
@@ -107,7 +107,7 @@ TEST(Engine, EnergyIsConservedWithShearSprings) {
   const EnergyRun r = vibrate(p, config, 100'000, static_energy);
   EXPECT_EQ(r.contacts_start, 12 * p.size() / 2);
   EXPECT_EQ(r.contacts_end, 12 * p.size() / 2);
-  EXPECT_LT(r.worst_error, 5e-3) << "worst " << r.worst_error << " drift " << r.final_error;
+  EXPECT_LT(r.worst_error, 5e-3) << "worst " << r.worst_error << " drift " << r.final_error;  // measured 3.3e-3
 }
 
 TEST(Engine, LocalDampingRemovesEnergy) {
