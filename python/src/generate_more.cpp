@@ -21,18 +21,7 @@ py::object namespace_of(py::dict values) { return py::module_::import("types").a
 
 generate::SizeClasses size_classes(const std::vector<double>& sizes, const std::vector<double>& number_fractions,
                                    const std::vector<double>& volume_fractions) {
-  generate::SizeClasses c;
-  c.sizes = sizes;
-  if (!number_fractions.empty() && !volume_fractions.empty())
-    fail_input("--number-fractions and --volume-fractions: give one of them");
-  if (!volume_fractions.empty()) {
-    c.fractions = volume_fractions;
-    c.volume_fractions = true;
-  } else {
-    c.fractions = number_fractions;
-  }
-  c.validate();
-  return c;
+  return generate::SizeClasses::from_options(sizes, number_fractions, volume_fractions);
 }
 
 py::dict ls_status(const generate::LsStatus& s) {

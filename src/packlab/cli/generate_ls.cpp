@@ -22,18 +22,7 @@
 namespace packlab::cli {
 
 generate::SizeClasses LsRunOptions::classes() const {
-  generate::SizeClasses c;
-  c.sizes = sizes;
-  if (!number_fractions.empty() && !volume_fractions.empty())
-    fail_input("--number-fractions and --volume-fractions: give one of them");
-  if (!volume_fractions.empty()) {
-    c.fractions = volume_fractions;
-    c.volume_fractions = true;
-  } else {
-    c.fractions = number_fractions;
-  }
-  c.validate();
-  return c;
+  return generate::SizeClasses::from_options(sizes, number_fractions, volume_fractions);
 }
 
 nlohmann::json LsRunOptions::parameters() const {

@@ -50,6 +50,18 @@ int floor_div(int a, int n) { return a >= 0 ? a / n : -((-a + n - 1) / n); }
 // ---------------------------------------------------------------------------------------------
 // Size classes
 
+SizeClasses SizeClasses::from_options(const std::vector<double>& sizes, const std::vector<double>& number_fractions,
+                                      const std::vector<double>& volume_fractions) {
+  if (!number_fractions.empty() && !volume_fractions.empty())
+    fail_input("--number-fractions and --volume-fractions: give one of them");
+  SizeClasses c;
+  c.sizes = sizes;
+  c.volume_fractions = !volume_fractions.empty();
+  c.fractions = c.volume_fractions ? volume_fractions : number_fractions;
+  c.validate();
+  return c;
+}
+
 void SizeClasses::validate() const {
   require(!sizes.empty(), "sizes", 0, "a list of at least one relative diameter");
   for (double s : sizes) require(s > 0.0 && std::isfinite(s), "sizes", s, "> 0 (relative diameters)");

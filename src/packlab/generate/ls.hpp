@@ -64,6 +64,10 @@ struct SizeClasses {
   std::vector<double> number_fractions() const;
   // Particles per class for n in total (largest-remainder rounding, sums to n).
   std::vector<long> counts(long n) const;
+
+  // From the front ends' options: number or volume fractions (at most one given), validated.
+  static SizeClasses from_options(const std::vector<double>& sizes, const std::vector<double>& number_fractions,
+                                  const std::vector<double>& volume_fractions);
 };
 
 struct LsParams {
