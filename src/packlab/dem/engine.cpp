@@ -177,10 +177,11 @@ Engine::Engine(const Packing& packing, const EngineConfig& config) : packing_(pa
   thread_wall_force_.assign(threads_, {});
 
   neighbors_.set_skin(config_.skin_ratio * r_max);
+  masses_changed();
   if (config_.time_step > 0.0)
     dt_ = config_.time_step;
   else if (config_.time_step_rule == TimeStepRule::contacts)
-    dt_ = config_.max_time_step > 0.0 ? config_.max_time_step : heaviest_particle_time_step();
+    dt_ = time_step_cap_;
   else
     dt_ = critical_time_step();
   if (!(dt_ > 0.0) || !std::isfinite(dt_)) fail_input("time step: could not be determined (no particles?)");
@@ -249,6 +250,7 @@ void Engine::set_radius_of_type(int type, double radius) {
       particles_.radius[k] = radius;
       update_mass(k);
     }
+  masses_changed();
 }
 
 void Engine::set_radii(const std::vector<double>& radius) {
@@ -260,6 +262,52 @@ void Engine::set_radii(const std::vector<double>& radius) {
     particles_.radius[k] = r;
     update_mass(k);
   }
+  masses_changed();
+}
+
+void Engine::masses_changed() {
+  time_step_cap_ = config_.max_time_step > 0.0 ? config_.max_time_step : heaviest_particle_time_step();
+}
+
+ContactGeometry Engine::pair_geometry(std::size_t i, std::size_t j, const Vec3& d, double distance) const {
+  const auto& P = particles_;
+  ContactGeometry g;
+  g.normal = d * (1.0 / distance);
+  g.overlap = P.radius[i] + P.radius[j] - distance;
+  g.branch_i = P.radius[i] - 0.5 * g.overlap;
+  g.branch_j = P.radius[j] - 0.5 * g.overlap;
+  g.relative_velocity =
+      P.velocity[j] - P.velocity[i] - cross(g.branch_j * P.angular_velocity[j] + g.branch_i * P.angular_velocity[i], g.normal);
+  g.mean_spin = 0.5 * (P.angular_velocity[i] + P.angular_velocity[j]);
+  g.dt = dt_;
+  g.radius_i = P.radius[i];
+  g.radius_j = P.radius[j];
+  g.effective_mass = 1.0 / (P.inverse_mass[i] + P.inverse_mass[j]);
+  g.spin_i = P.angular_velocity[i];
+  g.spin_j = P.angular_velocity[j];
+  g.relative_spin = P.angular_velocity[j] - P.angular_velocity[i];
+  g.time = time_;
+  return g;
+}
+
+ContactGeometry Engine::wall_geometry(std::size_t k, const Wall& wall, double distance) const {
+  const auto& P = particles_;
+  // The particle is i, the wall j: the normal points from the particle into the wall.
+  ContactGeometry g;
+  g.normal = -wall.normal;
+  g.overlap = P.radius[k] - distance;
+  g.branch_i = distance;
+  g.branch_j = 0.0;
+  g.relative_velocity = wall.velocity - P.velocity[k] - cross(g.branch_i * P.angular_velocity[k], g.normal);
+  g.mean_spin = 0.5 * P.angular_velocity[k];
+  g.dt = dt_;
+  g.radius_i = P.radius[k];
+  g.radius_j = 1e12 * P.radius[k];  // a plane: R* = r
+  g.effective_mass = P.mass[k];
+  g.spin_i = P.angular_velocity[k];
+  g.spin_j = Vec3{};
+  g.time = time_;
+  return g;
 }
 
 void Engine::set_time_step(double dt) {
@@ -364,29 +412,15 @@ void Engine::wall_forces(ContactModel<Law>& model, int thread, Vec3* force, Vec3
   wall_force.assign(walls, Vec3{});
   const auto& P = particles_;
   for (std::size_t k = begin; k < end; ++k) {
-    const double r = P.radius[k];
     for (std::size_t m = 0; m < walls; ++m) {
       const Wall& wall = walls_[m];
       const double distance = dot(P.position[k] - wall.point, wall.normal);
       Vec3& history = wall_history_[k * walls + m];
-      if (distance >= r) {
+      if (distance >= P.radius[k]) {
         history = Vec3{};
         continue;
       }
-      // The particle is i, the wall j: the normal points from the particle into the wall.
-      ContactGeometry g;
-      g.normal = -wall.normal;
-      g.overlap = r - distance;
-      g.branch_i = distance;
-      g.branch_j = 0.0;
-      g.relative_velocity = wall.velocity - P.velocity[k] - cross(g.branch_i * P.angular_velocity[k], g.normal);
-      g.mean_spin = 0.5 * P.angular_velocity[k];
-      g.dt = dt_;
-      g.radius_i = r;
-      g.radius_j = 1e12 * r;  // a plane: R* = r
-      g.effective_mass = P.fixed[k] ? P.mass[k] : 1.0 / P.inverse_mass[k];
-      g.spin_i = P.angular_velocity[k];
-      g.spin_j = Vec3{};
+      const ContactGeometry g = wall_geometry(k, wall, distance);
       const int t = P.type[k];
       const auto& params = model.pair_params[t * model.type_count + t];
       const PairForce f = Law::evaluate(g, params, history);
@@ -407,17 +441,11 @@ ContactForces Engine::contact_forces() const {
   ContactForces out;
   const auto& P = particles_;
   const std::size_t n = P.size();
-  auto geometry = [&](std::size_t i, std::size_t j, const Vec3& d) {
-    ContactGeometry g{};
-    const double dist = norm(d);
-    g.normal = d * (1.0 / dist);
-    g.overlap = P.radius[i] + P.radius[j] - dist;
-    g.branch_i = P.radius[i] - 0.5 * g.overlap;
-    g.branch_j = P.radius[j] - 0.5 * g.overlap;
-    g.dt = 0.0;  // no increment: the force as stored
-    g.radius_i = P.radius[i];
-    g.radius_j = P.radius[j];
-    g.effective_mass = 1.0 / (P.inverse_mass[i] + P.inverse_mass[j]);
+  // The elastic forces as stored: no increment of the histories (dt = 0) and no damping
+  // (no relative motion).
+  auto as_stored = [](ContactGeometry g) {
+    g.dt = 0.0;
+    g.relative_velocity = g.mean_spin = g.spin_i = g.spin_j = g.relative_spin = Vec3{};
     return g;
   };
   auto push = [&](int i, int j, int kind, const Vec3& branch, const Vec3& force) {
@@ -438,7 +466,7 @@ ContactForces Engine::contact_forces() const {
             const double rsum = P.radius[i] + P.radius[j];
             if (norm2(d) >= rsum * rsum) continue;
             auto history = model.history[p];
-            const PairForce f = Law::evaluate(geometry(i, j, d),
+            const PairForce f = Law::evaluate(as_stored(pair_geometry(i, j, d, norm(d))),
                                               model.pair_params[P.type[i] * model.type_count + P.type[j]], history);
             push(original_index_[i], original_index_[j], ContactForces::contact, d, f.force_on_j);
           }
@@ -446,13 +474,7 @@ ContactForces Engine::contact_forces() const {
           for (std::size_t k = 0; k < n; ++k) {
             const double distance = dot(P.position[k] - walls_[m].point, walls_[m].normal);
             if (distance >= P.radius[k]) continue;
-            ContactGeometry g{};
-            g.normal = -walls_[m].normal;
-            g.overlap = P.radius[k] - distance;
-            g.branch_i = distance;
-            g.radius_i = P.radius[k];
-            g.radius_j = 1e12 * P.radius[k];
-            g.effective_mass = P.mass[k];
+            const ContactGeometry g = as_stored(wall_geometry(k, walls_[m], distance));
             auto history = wall_history_[k * walls_.size() + m];
             const int t = P.type[k];
             const PairForce f = Law::evaluate(g, model.pair_params[t * model.type_count + t], history);
@@ -468,9 +490,8 @@ ContactForces Engine::contact_forces() const {
       const std::size_t i = static_cast<std::size_t>(bonds_.i[b]), j = static_cast<std::size_t>(bonds_.j[b]);
       const Vec3 d = P.position[j] + packing_.box.shift_vector(bond_image_now(b)) - P.position[i];
       auto history = histories[b];
-      ContactGeometry g = geometry(i, j, d);
+      ContactGeometry g = as_stored(pair_geometry(i, j, d, norm(d)));
       g.rest_length = bonds_.rest_length[b];
-      g.time = time_;
       const BondForce f = BondLaw::evaluate(g, bond_params<BondLaw>(b), history);
       push(original_index_[i], original_index_[j], ContactForces::bond, d, f.force_on_j);
     }
@@ -520,20 +541,8 @@ void Engine::bond_forces(int thread, Vec3* force, Vec3* torque, Totals& local) {
     const Vec3 d = P.position[j] + box.shift_vector(bond_image_now(b)) - P.position[i];
     const double dist = norm(d);
     if (!(dist > 0.0)) continue;  // coincident centres: no direction to act along
-    ContactGeometry g;
-    g.normal = d * (1.0 / dist);
-    g.overlap = P.radius[i] + P.radius[j] - dist;
-    g.branch_i = P.radius[i] - 0.5 * g.overlap;
-    g.branch_j = P.radius[j] - 0.5 * g.overlap;
-    g.relative_velocity = P.velocity[j] - P.velocity[i] -
-                          cross(g.branch_j * P.angular_velocity[j] + g.branch_i * P.angular_velocity[i], g.normal);
-    g.mean_spin = 0.5 * (P.angular_velocity[i] + P.angular_velocity[j]);
-    g.dt = dt_;
-    g.radius_i = P.radius[i];
-    g.radius_j = P.radius[j];
-    g.relative_spin = P.angular_velocity[j] - P.angular_velocity[i];
+    ContactGeometry g = pair_geometry(static_cast<std::size_t>(i), static_cast<std::size_t>(j), d, dist);
     g.rest_length = bonds_.rest_length[b];
-    g.time = time_;
     const auto& params = bond_params<BondLaw>(b);
     const BondForce f = BondLaw::evaluate(g, params, histories[b]);
     if (f.failed) ++local.bond_breaks;
@@ -626,6 +635,7 @@ void Engine::pair_forces(ContactModel<Law>& model, Totals& totals) {
           continue;
         }
         const double dist = std::sqrt(dist2);
+        // pair_geometry() inlined with particle i's data held in registers (hot loop).
         ContactGeometry g;
         g.normal = d * (1.0 / dist);
         g.overlap = rsum - dist;
@@ -743,10 +753,9 @@ Engine::Totals Engine::step_impl() {
   Totals totals;
   std::visit([&](auto& model) { pair_forces<std::decay_t<decltype(model.law)>, Measure>(model, totals); }, model_);
   if (config_.time_step <= 0.0 && config_.time_step_rule == TimeStepRule::contacts) {
-    const double cap = config_.max_time_step > 0.0 ? config_.max_time_step : heaviest_particle_time_step();
     dt_ = totals.max_stiffness_over_mass > 0.0
-              ? std::min(cap, config_.time_step_safety / std::sqrt(totals.max_stiffness_over_mass))
-              : cap;
+              ? std::min(time_step_cap_, config_.time_step_safety / std::sqrt(totals.max_stiffness_over_mass))
+              : time_step_cap_;
   }
   integrate<Measure>(totals);
   for (auto& wall : walls_) wall.point += dt_ * wall.velocity;
@@ -863,6 +872,7 @@ void Engine::load_state(std::istream& in) {
       damping_.size() != n || original_index_.size() != n)
     fail_input("checkpoint is damaged: array sizes differ");
   for (std::size_t k = 0; k < n; ++k) update_mass(k);
+  masses_changed();
   neighbors_.load(in);
   std::visit([&](auto& model) { binary::read_vector(in, model.history, "contact histories"); }, model_);
   if (neighbors_.particle_count() != n || std::visit([&](auto& m) { return m.history.size(); }, model_) !=

@@ -137,6 +137,9 @@ class Engine {
   void set_radius_of_type(int type, double radius);
   // Sets every radius (in the packing's particle order).
   void set_radii(const std::vector<double>& radius);
+  // Call after editing particles().mass / inertia (or their inverses) directly, e.g. for mass
+  // scaling: refreshes what the engine derives from the masses.
+  void masses_changed();
 
   // The whole dynamic state (particles, contact histories, neighbour list, step, time, time
   // step) in a binary form: an engine built from the same packing and configuration that
@@ -218,6 +221,10 @@ class Engine {
   std::array<int, 3> bond_image_now(std::size_t b) const;
   void update_mass(std::size_t k);
   double heaviest_particle_time_step() const;
+  // What the laws read about the pair (i, j) whose touching image of j sits at x_i + d
+  // (|d| = distance > 0), and about particle k touching a wall at `distance` from it.
+  ContactGeometry pair_geometry(std::size_t i, std::size_t j, const Vec3& d, double distance) const;
+  ContactGeometry wall_geometry(std::size_t k, const Wall& wall, double distance) const;
   const TypeParams& params_of_type(int type) const;
 
   Packing packing_;  // box, types, bonds and fields of the input; positions synced on demand
@@ -241,6 +248,7 @@ class Engine {
   std::vector<Totals> thread_totals_;
   int threads_ = 1;
   double dt_ = 0.0;
+  double time_step_cap_ = 0.0;  // contacts rule: max_time_step or the heaviest particle's step
   long step_ = 0;
   double time_ = 0.0;
 };

@@ -257,6 +257,7 @@ void Vem::apply_mass_scaling() {
     P.inverse_mass[k] = 1.0 / m;
     P.inverse_inertia[k] = 1.0 / P.inertia[k];
   }
+  engine_->masses_changed();
 }
 
 void Vem::start_relaxation() {
