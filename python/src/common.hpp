@@ -145,5 +145,8 @@ void bind_io(py::module_& m);
 void bind_generate(py::module_& m);
 void bind_analyze(py::module_& m);
 void bind_dem(py::module_& m);
+void bind_shear(py::module_& m);     // shear.cpp (issue #6)
+void bind_opal(py::module_& m);      // opal.cpp: fba, opal builder (issue #7)
+void bind_compress(py::module_& m);  // compress.cpp: compression test, calibration (issue #7)
 
 }  // namespace packlab::python

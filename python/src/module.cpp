@@ -18,4 +18,7 @@ PYBIND11_MODULE(_core, m) {
   packlab::python::bind_generate(m);
   packlab::python::bind_analyze(m);
   packlab::python::bind_dem(m);
+  packlab::python::bind_shear(m);
+  packlab::python::bind_opal(m);
+  packlab::python::bind_compress(m);
 }

@@ -22,5 +22,14 @@ void add_generate_ls(CLI::App& generate);
 void add_generate_scrm(CLI::App& generate);
 void add_shake(CLI::App& app);
 void add_analyze_rdf(CLI::App& analyze);
+// Bonded models and mechanical tests (issues #6, #7): `bond`, `build opal`, `generate fba`,
+// `test shear|compress`, `calibrate shear|compress`.
+void add_bond(CLI::App& app);
+void add_generate_fba(CLI::App& generate);
+void add_build_opal(CLI::App& build);
+void add_test_shear(CLI::App& test);
+void add_test_compress(CLI::App& test);
+void add_calibrate_shear(CLI::App& calibrate);
+void add_calibrate_compress(CLI::App& calibrate);
 
 }  // namespace packlab::cli

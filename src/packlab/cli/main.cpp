@@ -29,6 +29,19 @@ int main(int argc, char** argv) {
   packlab::cli::add_shake(app);
   auto* analyze = packlab::cli::add_analyze(app);
   packlab::cli::add_analyze_rdf(*analyze);
+  packlab::cli::add_generate_fba(*generate);
+  packlab::cli::add_bond(app);
+  auto* build = app.add_subcommand("build", "Build a model from a packing (inverse opal)");
+  build->require_subcommand(1);
+  packlab::cli::add_build_opal(*build);
+  auto* test = app.add_subcommand("test", "Load-test a bonded model (oscillatory shear, uniaxial compression)");
+  test->require_subcommand(1);
+  packlab::cli::add_test_shear(*test);
+  packlab::cli::add_test_compress(*test);
+  auto* calibrate = app.add_subcommand("calibrate", "Calibrate model parameters to a measured target");
+  calibrate->require_subcommand(1);
+  packlab::cli::add_calibrate_shear(*calibrate);
+  packlab::cli::add_calibrate_compress(*calibrate);
   // CLI11 says only "A subcommand is required" for a misspelt one: name it and list the known.
   if (argc > 1 && argv[1][0] != '-') {
     std::string known;

@@ -1,0 +1,8 @@
+// Placeholder registered by the lead; the owner replaces it.
+#include "common.hpp"
+
+namespace packlab::python {
+
+void bind_opal(py::module_& /*m*/) {}
+
+}  // namespace packlab::python
