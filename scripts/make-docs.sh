@@ -36,6 +36,10 @@ tmp="$out.tmp$$"
 } > "$tmp"
 mv "$tmp" "$out"
 echo "wrote $out"
+# Every config-file key, from the schemas the commands read their files with.
+"$P" config-keys > "$ROOT/docs/config-reference.md.tmp$$"
+mv "$ROOT/docs/config-reference.md.tmp$$" "$ROOT/docs/config-reference.md"
+echo "wrote $ROOT/docs/config-reference.md"
 # The Python API reference from the module's docstrings, and the tutorial's figures from a
 # run of the tutorial's own code (docs/tutorial.py), when the Python module is built.
 PY=/usr/bin/python3

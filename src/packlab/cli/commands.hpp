@@ -2,6 +2,7 @@
 #pragma once
 
 #include <CLI/CLI.hpp>
+#include <string>
 
 namespace packlab::cli {
 
@@ -31,5 +32,11 @@ void add_test_shear(CLI::App& test);
 void add_test_compress(CLI::App& test);
 void add_calibrate_shear(CLI::App& calibrate);
 void add_calibrate_compress(CLI::App& calibrate);
+
+// Config-file references (io/config.hpp schemas) of the commands that read one, and the
+// `config-keys` command printing them all.
+std::string vem_config_reference();
+std::string config_reference();
+void add_config_keys(CLI::App& app);
 
 }  // namespace packlab::cli

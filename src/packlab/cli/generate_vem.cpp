@@ -16,7 +16,6 @@
 #include <fstream>
 #include <memory>
 #include <sstream>
-#include <toml++/toml.h>
 
 #include "packlab/analyze/inflection.hpp"
 #include "packlab/analyze/power_law.hpp"
@@ -26,6 +25,7 @@
 #include "packlab/core/progress.hpp"
 #include "packlab/generate/vem.hpp"
 #include "packlab/io/atomic_file.hpp"
+#include "packlab/io/config.hpp"
 #include "packlab/io/packing_io.hpp"
 #include "packlab/io/plot.hpp"
 #include "packlab/io/report.hpp"
@@ -45,108 +45,66 @@ struct RunSettings {
 
 constexpr std::uint64_t settings_magic = 0x31544553434D4556ULL;  // "VEMCSET1"
 
-[[noreturn]] void bad_key(const std::string& file, const std::string& key, const std::string& why) {
-  fail_input(fmt::format("{}: {} = ...: {}", file, key, why));
+void add_material_keys(io::ConfigSchema& schema, const std::string& section, dem::TypeParams& m) {
+  schema.number(section + ".normal_stiffness", m.normal_stiffness, "Particle normal stiffness k_n [N/m]")
+      .number(section + ".shear_stiffness", m.shear_stiffness, "Particle shear stiffness k_s [N/m]")
+      .number(section + ".density", m.density, "Density [kg/m^3]")
+      .number(section + ".damping", m.damping, "Local damping coefficient alpha, in [0, 1)")
+      .number(section + ".friction", m.friction, "Coulomb friction coefficient mu [-]");
 }
 
-double get_double(const toml::node& v, const std::string& file, const std::string& key) {
-  if (auto d = v.value<double>()) return *d;
-  bad_key(file, key, "must be a number");
+// Every key of the config file, bound to the parameters it sets (docs/config-reference.md is
+// generated from this). Unknown keys are errors.
+io::ConfigSchema vem_schema(generate::VemParams& p, RunSettings& s) {
+  io::ConfigSchema schema("generate vem", "The void expansion method (docs/vem.md); flags override the file.");
+  schema.integer("structural", p.structural, "Structural particles N_S")
+      .integer("voids", p.voids, "Void particles N_V")
+      .number("phi_s", p.phi_s, "Volume fraction of the structural particles Phi_S, in (0, 0.64)")
+      .number("radius", p.radius, "Structural radius r_S [m]")
+      .integer("seed", p.seed, "Seed of the random generator")
+      .integer("threads", p.threads, "OpenMP threads (0 = all cores)")
+      .integer("blowup_steps", p.blowup_steps, "Blow-up steps m of the structural particles")
+      .number("void_radius_ratio", p.void_radius_ratio,
+              "Initial void radius and its growth per cycle, r_V0 / r_S")
+      .number("contact_eps", p.contact_eps, "Coordination contact tolerance eps: contact at (1 + eps) 2 r_S")
+      .number("void_mass_scaling", p.void_mass_scaling,
+              "Void mass scaling c (0 = none; docs/vem.md): quasi-static, results shown not to depend on it")
+      .number("time_step_safety", p.time_step_safety, "Time step as a fraction of sqrt(m/k)")
+      .number("skin", p.skin, "Verlet skin / r_S")
+      .number_to_all("damping", {&p.structural_material.damping, &p.void_material.damping},
+                     "Local damping of both materials (overridden by the material tables)")
+      .number_to_all("friction", {&p.structural_material.friction, &p.void_material.friction},
+                     "Friction of both materials (overridden by the material tables)");
+  add_material_keys(schema, "structural_material", p.structural_material);
+  add_material_keys(schema, "void_material", p.void_material);
+  schema.number("relax.tolerance", p.relax_tolerance, "A relaxation ends when the unbalanced force ratio is below this")
+      .number("relax.overlap", p.relax_overlap, "... or when the largest overlap / (r_i + r_j) is below this")
+      .integer("relax.max_steps", p.relax_max_steps, "Step limit of one relaxation")
+      .integer("relax.check_interval", p.relax_check_interval, "Steps between two checks of the criterion")
+      .number("stop.strain_energy", p.stop_strain_energy,
+              "Stage III: stop when E_strain / (N_S k_n,S r_S^2) exceeds this")
+      .number("stop.max_q", p.max_q, "Stop at this q = r_V / r_S at the latest")
+      .integer("output.snapshot_every", s.snapshot_every,
+               "Save the structural packing before every k-th increment (0 = never)")
+      .number("output.checkpoint_seconds", s.checkpoint_seconds, "Wall-clock seconds between checkpoints")
+      .boolean("output.plots", s.plots, "Draw cn_curve.png")
+      .number("analysis.window_widths", s.window_widths, "Inflection fit window, in logistic widths")
+      .number("analysis.power_law_max_excess", s.power_law_max_excess,
+              "Largest Phi_T - Phi_T,i in the beta fit of eq. 9");
+  return schema;
 }
 
-long get_long(const toml::node& v, const std::string& file, const std::string& key) {
-  if (v.is_integer()) return static_cast<long>(*v.value<std::int64_t>());
-  bad_key(file, key, "must be an integer");
+void read_config(const std::string& file, generate::VemParams& p, RunSettings& s) { vem_schema(p, s).read_file(file); }
+
+}  // namespace
+
+std::string vem_config_reference() {
+  generate::VemParams p;
+  RunSettings s;
+  return vem_schema(p, s).markdown();
 }
 
-bool get_bool(const toml::node& v, const std::string& file, const std::string& key) {
-  if (auto b = v.value<bool>()) return *b;
-  bad_key(file, key, "must be true or false");
-}
-
-void read_material(const toml::table& t, const std::string& file, const std::string& section,
-                   dem::TypeParams& m) {
-  for (auto&& [k, v] : t) {
-    const std::string key(k.str());
-    const std::string full = section + "." + key;
-    if (key == "normal_stiffness") m.normal_stiffness = get_double(v, file, full);
-    else if (key == "shear_stiffness") m.shear_stiffness = get_double(v, file, full);
-    else if (key == "density") m.density = get_double(v, file, full);
-    else if (key == "damping") m.damping = get_double(v, file, full);
-    else if (key == "friction") m.friction = get_double(v, file, full);
-    else bad_key(file, full, "unknown key (known: normal_stiffness, shear_stiffness, density, damping, friction)");
-  }
-}
-
-// Reads the TOML config (docs/vem.md lists every key); unknown keys are errors.
-void read_config(const std::string& file, generate::VemParams& p, RunSettings& s) {
-  toml::table root;
-  try {
-    root = toml::parse_file(file);
-  } catch (const toml::parse_error& e) {
-    fail_input(fmt::format("{}:{}: {}", file, e.source().begin.line, e.description()));
-  }
-  for (auto&& [k, v] : root) {
-    const std::string key(k.str());
-    const auto section = [&](const char* name) -> const toml::table& {
-      if (!v.is_table()) bad_key(file, key, fmt::format("must be a table [{}]", name));
-      return *v.as_table();
-    };
-    if (key == "structural") p.structural = get_long(v, file, key);
-    else if (key == "voids") p.voids = get_long(v, file, key);
-    else if (key == "phi_s") p.phi_s = get_double(v, file, key);
-    else if (key == "radius") p.radius = get_double(v, file, key);
-    else if (key == "seed") p.seed = static_cast<std::uint64_t>(get_long(v, file, key));
-    else if (key == "threads") p.threads = static_cast<int>(get_long(v, file, key));
-    else if (key == "blowup_steps") p.blowup_steps = static_cast<int>(get_long(v, file, key));
-    else if (key == "void_radius_ratio") p.void_radius_ratio = get_double(v, file, key);
-    else if (key == "contact_eps") p.contact_eps = get_double(v, file, key);
-    else if (key == "void_mass_scaling") p.void_mass_scaling = get_double(v, file, key);
-    else if (key == "time_step_safety") p.time_step_safety = get_double(v, file, key);
-    else if (key == "skin") p.skin = get_double(v, file, key);
-    else if (key == "damping") p.structural_material.damping = p.void_material.damping = get_double(v, file, key);
-    else if (key == "friction") p.structural_material.friction = p.void_material.friction = get_double(v, file, key);
-    else if (key == "structural_material") read_material(section("structural_material"), file, key, p.structural_material);
-    else if (key == "void_material") read_material(section("void_material"), file, key, p.void_material);
-    else if (key == "relax") {
-      for (auto&& [k2, v2] : section("relax")) {
-        const std::string sub(k2.str()), full = key + "." + sub;
-        if (sub == "tolerance") p.relax_tolerance = get_double(v2, file, full);
-        else if (sub == "overlap") p.relax_overlap = get_double(v2, file, full);
-        else if (sub == "max_steps") p.relax_max_steps = get_long(v2, file, full);
-        else if (sub == "check_interval") p.relax_check_interval = get_long(v2, file, full);
-        else bad_key(file, full, "unknown key (known: tolerance, overlap, max_steps, check_interval)");
-      }
-    } else if (key == "stop") {
-      for (auto&& [k2, v2] : section("stop")) {
-        const std::string sub(k2.str()), full = key + "." + sub;
-        if (sub == "strain_energy") p.stop_strain_energy = get_double(v2, file, full);
-        else if (sub == "max_q") p.max_q = get_double(v2, file, full);
-        else bad_key(file, full, "unknown key (known: strain_energy, max_q)");
-      }
-    } else if (key == "output") {
-      for (auto&& [k2, v2] : section("output")) {
-        const std::string sub(k2.str()), full = key + "." + sub;
-        if (sub == "snapshot_every") s.snapshot_every = get_long(v2, file, full);
-        else if (sub == "checkpoint_seconds") s.checkpoint_seconds = get_double(v2, file, full);
-        else if (sub == "plots") s.plots = get_bool(v2, file, full);
-        else bad_key(file, full, "unknown key (known: snapshot_every, checkpoint_seconds, plots)");
-      }
-    } else if (key == "analysis") {
-      for (auto&& [k2, v2] : section("analysis")) {
-        const std::string sub(k2.str()), full = key + "." + sub;
-        if (sub == "window_widths") s.window_widths = get_double(v2, file, full);
-        else if (sub == "power_law_max_excess") s.power_law_max_excess = get_double(v2, file, full);
-        else bad_key(file, full, "unknown key (known: window_widths, power_law_max_excess)");
-      }
-    } else {
-      bad_key(file, key,
-              "unknown key (known: structural, voids, phi_s, radius, seed, threads, blowup_steps, "
-              "void_radius_ratio, contact_eps, void_mass_scaling, time_step_safety, skin, damping, friction, "
-              "[structural_material], [void_material], [relax], [stop], [output], [analysis])");
-    }
-  }
-}
+namespace {
 
 void validate_settings(const RunSettings& s) {
   require(s.snapshot_every >= 0, "output.snapshot_every", static_cast<double>(s.snapshot_every),

@@ -31,6 +31,7 @@ int main(int argc, char** argv) {
   packlab::cli::add_analyze_rdf(*analyze);
   packlab::cli::add_generate_fba(*generate);
   packlab::cli::add_bond(app);
+  packlab::cli::add_config_keys(app);
   auto* build = app.add_subcommand("build", "Build a model from a packing (inverse opal)");
   build->require_subcommand(1);
   packlab::cli::add_build_opal(*build);
