@@ -1,6 +1,7 @@
 // Generators with keyword arguments named like the options of `packlab generate ...`.
 #include "common.hpp"
 #include "packlab/core/random.hpp"
+#include "packlab/generate/bonding.hpp"
 #include "packlab/generate/lattice.hpp"
 #include "packlab/generate/random.hpp"
 
@@ -48,6 +49,24 @@ along x, y, z, spheres of `radius` [m] with a surface `gap` [m] between nearest 
 box of nominal volume fraction `phi` (overlaps allowed), or, with no_overlap=True, by random
 sequential addition (phi < 0.36). periodic: per axis; aspect: box edge ratios; seed: the
 random seed (the same seed gives the same packing as the command line).
+)doc");
+  m.def(
+      "bond",
+      [](const Packing& packing, const std::string& model, double eps, double cutoff_ratio, int threads) {
+        generate::BondingOptions options;
+        options.cutoff_ratio = generate::bonding_cutoff_ratio(model, eps, cutoff_ratio);
+        options.threads = threads;
+        Packing bonded = packing;
+        py::gil_scoped_release nogil;
+        generate::add_bonds(bonded, options);
+        return bonded;
+      },
+      py::arg("packing"), py::kw_only(), py::arg("model") = "contact", py::arg("eps") = 0.01,
+      py::arg("cutoff_ratio") = 1.75, py::arg("threads") = 1, R"doc(
+`packlab bond`: a copy of `packing` with a bond between every pair closer than the model's
+cutoff, across periodic boundaries. model "contact": d < (1 + eps)(r_i + r_j) (PFC contact
+bonds, doh-elastic-properties §2.1); "beam": d < cutoff_ratio (r_i + r_j) (elastic beam bonds
+within 1.75 d, bpm-inverse-opals §2.1). Bonds are saved in .vtu files.
 )doc");
   bind_generate_later(m);
 }
