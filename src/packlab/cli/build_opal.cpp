@@ -1,8 +1,224 @@
-// packlab build opal (issue #7): placeholder registered by the lead; the owner replaces it.
+// packlab build opal IN --pores fcc|random (--pore-diameter D | --pore-ratio Q) [--orientation 111|100]
+//   [--pore-spacing 1] [--pore-origin X,Y,Z] [--pore-count N | --pore-fraction F] [--coating T]
+//   [--opening-distance-ratio 1] [--substrate-layers 2] [--bond-cutoff 1.75] [--bond-radius-ratio 1]
+//   [--silica-density 1297] [--titania-density 3660] [--seed S] [--threads T] --out DIR
+// Inverse-opal bonded-particle model (generate/opal.hpp, bpm-inverse-opals §2.1): pores cut out
+// of a particle packing (eq. 1), optional titania coating shell (eq. 2) with free interpore
+// openings, fixed substrate of the bottom layers, bonds within the cutoff across periodic
+// boundaries. Writes DIR/opal.vtu (the bonded model: types, fixed flags, bonds with material,
+// image and rest length), DIR/pores.xyz (the pore set as spheres), DIR/profile.csv (particles
+// per type along z) and report.json.
+#include <fmt/format.h>
+
+#include <chrono>
+#include <cmath>
+#include <memory>
+#include <numbers>
+#include <sstream>
+
 #include "packlab/cli/commands.hpp"
+#include "packlab/core/error.hpp"
+#include "packlab/generate/opal.hpp"
+#include "packlab/io/atomic_file.hpp"
+#include "packlab/io/packing_io.hpp"
+#include "packlab/io/report.hpp"
 
 namespace packlab::cli {
 
-void add_build_opal(CLI::App& /*build*/) {}
+void add_build_opal(CLI::App& build) {
+  struct Options {
+    std::string in, out;
+    std::string pores = "fcc";
+    double pore_diameter = 0.0, pore_ratio = 0.0;
+    std::string orientation = "111";
+    double pore_spacing = 1.0;
+    std::vector<double> pore_origin;
+    long pore_count = 0;
+    double pore_fraction = 0.0;
+    generate::OpalOptions opal;
+    std::uint64_t seed = 1;
+    bool quiet = false;
+  };
+  auto opt = std::make_shared<Options>();
+  auto* cmd = build.add_subcommand(
+      "opal", "Inverse-opal bonded-particle model: pores (FCC or random), coating, fixed substrate, bonds "
+              "(bpm-inverse-opals §2.1)");
+  cmd->add_option("in", opt->in, "Input particle packing (any readable format; e.g. from generate fba)")->required();
+  cmd->add_option("--pores", opt->pores, "Pore arrangement: fcc (lattice) or random (force-biased pore packing)")
+      ->check(CLI::IsMember({"fcc", "random"}))
+      ->capture_default_str();
+  cmd->add_option("--pore-diameter", opt->pore_diameter, "Pore diameter D [m]");
+  cmd->add_option("--pore-ratio", opt->pore_ratio, "Pore diameter / mean particle diameter (instead of D)");
+  cmd->add_option("--orientation", opt->orientation, "FCC direction along z: 111 or 100")->capture_default_str();
+  cmd->add_option("--pore-spacing", opt->pore_spacing,
+                  "FCC nearest-neighbour pore distance / D, in [0.5, 2] (1 = touching, < 1 = wider openings)")
+      ->capture_default_str();
+  cmd->add_option("--pore-origin", opt->pore_origin,
+                  "A pore lattice point X,Y,Z [m] (default: box corner in x, y; lowest layer just above the "
+                  "substrate)")
+      ->delimiter(',')
+      ->expected(3);
+  cmd->add_option("--pore-count", opt->pore_count, "Random pores: number of pores");
+  cmd->add_option("--pore-fraction", opt->pore_fraction,
+                  "Random pores: pore volume fraction of the region above the substrate, in (0, 0.6)");
+  cmd->add_option("--coating", opt->opal.coating_thickness, "Titania coating thickness L_coat [m] (0 = none)")
+      ->capture_default_str();
+  cmd->add_option("--opening-distance-ratio", opt->opal.opening_distance_ratio,
+                  "Coating candidates farther than this x (L_coat + r) from the silica surface stay open")
+      ->capture_default_str();
+  cmd->add_option("--substrate-layers", opt->opal.substrate_layers,
+                  "Fixed substrate: particles with z below the bottom + this x mean diameter")
+      ->capture_default_str();
+  cmd->add_option("--bond-cutoff", opt->opal.bond_cutoff_ratio,
+                  "Bond pairs closer than this x (r_i + r_j) (1.75 d for equal particles), in [1, 2)")
+      ->capture_default_str();
+  cmd->add_option("--bond-radius-ratio", opt->opal.bond_radius_ratio,
+                  "Bond radius / smaller particle radius (recorded for the bond law)")
+      ->capture_default_str();
+  cmd->add_option("--silica-density", opt->opal.silica_density, "Silica continuum density for the report [kg/m^3]")
+      ->capture_default_str();
+  cmd->add_option("--titania-density", opt->opal.titania_density,
+                  "Titania continuum density for the report [kg/m^3]")
+      ->capture_default_str();
+  cmd->add_option("--seed", opt->seed, "Random seed (random pores)")->capture_default_str();
+  cmd->add_option("--threads", opt->opal.threads, "Threads of the bond search")->capture_default_str();
+  cmd->add_option("--out", opt->out, "Output folder")->required();
+  cmd->add_flag("--quiet", opt->quiet, "No output");
+  cmd->callback([opt] {
+    const auto t0 = std::chrono::steady_clock::now();
+    const Packing in = io::read_packing(opt->in);
+    require(in.size() >= 1, "particles", 0, ">= 1 in the input packing");
+    if ((opt->pore_diameter > 0.0) == (opt->pore_ratio > 0.0))
+      fail_input("--pore-diameter and --pore-ratio: give exactly one of them (> 0)");
+    double mean_d = 0;
+    for (double r : in.radius) mean_d += 2.0 * r;
+    mean_d /= static_cast<double>(in.size());
+    const double D = opt->pore_diameter > 0.0 ? opt->pore_diameter : opt->pore_ratio * mean_d;
+    require(std::isfinite(D), "pore_diameter", D, "> 0 m");
+    generate::OpalOptions o = opt->opal;
+    Random rng(opt->seed);
+    nlohmann::json pore_params;
+    if (opt->pores == "fcc") {
+      if (opt->pore_count > 0 || opt->pore_fraction > 0.0)
+        fail_input("--pore-count / --pore-fraction: only with --pores random");
+      o.fcc.diameter = D;
+      o.fcc.orientation = generate::fcc_orientation_from_name(opt->orientation);
+      o.fcc.spacing_ratio = opt->pore_spacing;
+      if (!opt->pore_origin.empty()) {
+        o.fcc.auto_origin = false;
+        o.fcc.origin = {opt->pore_origin[0], opt->pore_origin[1], opt->pore_origin[2]};
+      }
+      const Vec3 per = generate::fcc_pore_period(o.fcc);
+      pore_params = {{"arrangement", "fcc"},
+                     {"orientation", generate::fcc_orientation_name(o.fcc.orientation)},
+                     {"spacing_ratio", o.fcc.spacing_ratio},
+                     {"lattice_period_m", {per.x, per.y, per.z}}};
+    } else {
+      if ((opt->pore_count > 0) == (opt->pore_fraction > 0.0))
+        fail_input("--pore-count and --pore-fraction: give exactly one of them with --pores random");
+      const Box region = generate::random_pore_region(in, o.substrate_layers);
+      generate::RandomPores rp;
+      rp.diameter = D;
+      const double v_pore = std::numbers::pi / 6.0 * D * D * D;
+      if (opt->pore_fraction > 0.0) {
+        require(opt->pore_fraction < 0.6, "pore_fraction", opt->pore_fraction, "in (0, 0.6)");
+        rp.count = std::max(1L, std::lround(opt->pore_fraction * region.volume() / v_pore));
+      } else {
+        rp.count = opt->pore_count;
+      }
+      o.pores = generate::random_pores(region, rp, rng);
+      pore_params = {{"arrangement", "random"},
+                     {"count", rp.count},
+                     {"pore_fraction_of_region", static_cast<double>(rp.count) * v_pore / region.volume()},
+                     {"region_lo_m", {region.lo.x, region.lo.y, region.lo.z}},
+                     {"region_length_m", {region.length.x, region.length.y, region.length.z}},
+                     {"seed", opt->seed}};
+    }
+    pore_params["diameter_m"] = D;
+    pore_params["ratio_to_mean_particle_diameter"] = D / mean_d;
+    io::ensure_directory(opt->out);
+    generate::OpalSummary s;
+    const Packing model = generate::build_opal(in, o, &s, [&](const std::string& phase, double) {
+      if (!opt->quiet && phase != "done") fmt::print(stderr, "build opal: {}\n", phase);
+    });
+    const generate::PoreSet pores = generate::opal_pores(in, o);
+    const std::filesystem::path dir(opt->out);
+    io::WriteOptions w;
+    w.comment = fmt::format("packlab {} build opal {} pores={} D={:g} coating={:g} bond_cutoff={:g} "
+                            "bond_radius_ratio={:g}",
+                            io::version(), opt->in, opt->pores, D, o.coating_thickness, o.bond_cutoff_ratio,
+                            o.bond_radius_ratio);
+    io::write_packing(model, dir / "opal.vtu", w);
+    Packing pore_packing;
+    pore_packing.box = in.box;
+    for (std::size_t k = 0; k < pores.size(); ++k) pore_packing.add(pores.centre[k], pores.radius[k], particle_type::pore);
+    io::write_packing(pore_packing, dir / "pores.xyz", w);
+    // Profile along z: particles per type in slabs of one mean diameter.
+    {
+      const double zlo = in.box.lo.z, h = mean_d;
+      const int bins = std::max(1, static_cast<int>(std::ceil(in.box.length.z / h)));
+      std::vector<std::array<long, 3>> count(static_cast<std::size_t>(bins), {0, 0, 0});
+      for (std::size_t i = 0; i < model.size(); ++i) {
+        const int b = std::clamp(static_cast<int>((model.position[i].z - zlo) / h), 0, bins - 1);
+        const int t = model.type[i] == particle_type::coating ? 1 : model.type[i] == particle_type::substrate ? 2 : 0;
+        ++count[static_cast<std::size_t>(b)][static_cast<std::size_t>(t)];
+      }
+      std::ostringstream csv;
+      csv << "z_m,silica,titania,substrate\n";
+      for (int b = 0; b < bins; ++b)
+        csv << fmt::format("{:.8g},{},{},{}\n", zlo + (b + 0.5) * h, count[static_cast<std::size_t>(b)][0],
+                           count[static_cast<std::size_t>(b)][1], count[static_cast<std::size_t>(b)][2]);
+      io::write_text_atomically(dir / "profile.csv", csv.str());
+    }
+    nlohmann::json report = io::report_header("build opal");
+    report["parameters"] = {{"input", opt->in},
+                            {"pores", pore_params},
+                            {"coating_thickness_m", o.coating_thickness},
+                            {"opening_distance_ratio", o.opening_distance_ratio},
+                            {"substrate_layers", o.substrate_layers},
+                            {"bond_cutoff_ratio", o.bond_cutoff_ratio},
+                            {"bond_radius_ratio", o.bond_radius_ratio},
+                            {"silica_density_kg_m3", o.silica_density},
+                            {"titania_density_kg_m3", o.titania_density},
+                            {"threads", o.threads}};
+    report["results"] = {{"input_particles", s.input_particles},
+                         {"particles", s.particles},
+                         {"silica_particles", s.structural},
+                         {"titania_particles", s.coating},
+                         {"substrate_particles", s.substrate},
+                         {"removed_particles", s.removed},
+                         {"coating_dropped_at_openings", s.coating_openings},
+                         {"pores", s.pores},
+                         {"bonds", s.bonds},
+                         {"bonds_silica", s.bonds_by_material[0]},
+                         {"bonds_titania", s.bonds_by_material[1]},
+                         {"bonds_substrate", s.bonds_by_material[2]},
+                         {"bond_materials", {{"0", "silica"}, {"1", "titania"}, {"2", "substrate"}}},
+                         {"periodic_bonds", s.periodic_bonds},
+                         {"mean_coordination", s.mean_coordination},
+                         {"bonds_per_particle", s.particles ? static_cast<double>(s.bonds) / static_cast<double>(s.particles) : 0.0},
+                         {"porosity", s.porosity},
+                         {"particle_porosity", s.particle_porosity},
+                         {"density_kg_m3", s.density},
+                         {"mean_particle_diameter_m", s.mean_particle_diameter},
+                         {"substrate_top_m", s.substrate_top},
+                         {"lattice_commensurate", s.lattice_commensurate},
+                         {"build_seconds", s.seconds}};
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    report["seconds"] = seconds;
+    io::write_report(dir / "report.json", report);
+    if (!s.lattice_commensurate)
+      fmt::print(stderr,
+                 "packlab: warning: the FCC pore lattice (period {:g} x {:g} x {:g} m) does not fit the periodic box: "
+                 "pores form a seam at the boundary\n",
+                 generate::fcc_pore_period(o.fcc).x, generate::fcc_pore_period(o.fcc).y,
+                 generate::fcc_pore_period(o.fcc).z);
+    if (!opt->quiet)
+      fmt::print("{} particles ({} silica, {} titania, {} substrate), {} bonds, mean coordination {:.3f}, porosity "
+                 "{:.4f}, density {:.1f} kg/m^3, {} pores; wrote {} in {:.2f} s\n",
+                 s.particles, s.structural, s.coating, s.substrate, s.bonds, s.mean_coordination, s.porosity, s.density,
+                 s.pores, opt->out, seconds);
+  });
+}
 
 }  // namespace packlab::cli

@@ -1,0 +1,90 @@
+// Force-biased algorithm (FBA) for dense random packings of poly- or monodisperse spheres to a
+// target porosity (bpm-inverse-opals §2.1, after Mościński, Bargieł, Rycerz & Jacobs 1989 and
+// Bezrukov, Bargieł & Stoyan 2002), in a box periodic along any subset of axes; also used to
+// place random pores (§4).
+//
+// Model (every choice is a named parameter below):
+//  - Relative radii rho_i (any common scale) are given; the target radii are R_i = s_t rho_i
+//    with s_t chosen so that sum 4/3 pi R_i^3 = (1 - target_porosity) V_box.
+//  - Start: uniform random centres (along open axes inside [lo + R_i, hi - R_i]).
+//  - Two scales, as in the classic FBA: the outer ("nominal") scale s_out, from which the
+//    pushing forces come, starts where the spheres would fill the box (volume fraction 1; at
+//    most 1.5 s_t, for dilute sets such as pores) and shrinks; the inner ("true") scale s_in = min_pairs d_ij / (rho_i + rho_j) is the largest
+//    scale at which the current centres carry no overlap.
+//  - Iteration: every pair overlapping at s_out, h_ij = s_out (rho_i + rho_j) - d_ij > 0, pushes
+//    i and j apart along their axis by step x h_ij shared in inverse proportion to the sphere
+//    volumes (i moves by step h_ij rho_j^3 / (rho_i^3 + rho_j^3)). All displacements of one
+//    iteration are computed from the same positions (Jacobi), so the result does not depend on
+//    the thread count. One particle moves at most max_move x R_i per iteration. Along open axes
+//    a wall keeps each centre in [lo + R_i, hi - R_i] (spheres wholly inside the box).
+//  - Then s_out <- max(s_t, s_out - shrink_rate (s_out - s_in)): the nominal diameters shrink
+//    towards the true ones, never below the target.
+//  - Stop criterion (documented, checked): the maximum relative overlap at the target radii,
+//    1 - s_in / s_t = max_pairs (R_i + R_j - d_ij) / (R_i + R_j), is <= tolerance (target
+//    reached); or max_iterations (reported, status max_iterations).
+//  - The result has radii R_i exactly (porosity exactly the target) and is verified by an
+//    independent pair search (generate::min_contact_ratio): its max relative overlap is reported
+//    and must be <= tolerance when the target is reached.
+#pragma once
+
+#include <array>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "packlab/core/packing.hpp"
+#include "packlab/core/random.hpp"
+#include "packlab/generate/ls.hpp"  // SizeClasses
+
+namespace packlab::generate {
+
+struct FbaParams {
+  double target_porosity = 0.38;   // 1 - sum of sphere volumes / box volume, in [0.30, 1)
+  double tolerance = 1e-3;         // accepted max relative overlap at the end, in (0, 0.1]
+  double shrink_rate = 0.01;       // fraction of (s_out - s_in) removed per iteration, in (0, 1]
+  double step = 1.0;               // fraction of each pair's overlap removed per iteration, (0, 1]
+  double max_move = 0.5;           // per-iteration displacement cap in target radii, (0, 2]
+  long max_iterations = 100000;    // >= 1
+  int threads = 1;
+  void validate() const;           // InputError naming key, value and range
+};
+
+enum class FbaStop { target_reached, max_iterations };
+std::string fba_stop_name(FbaStop stop);
+
+struct FbaStatus {
+  long iteration = 0;
+  double outer_scale = 0;       // s_out / s_t
+  double inner_scale = 0;       // s_in / s_t (1 - max relative overlap at the target radii)
+  double max_overlap = 0;       // max_pairs (R_i + R_j - d_ij)/(R_i + R_j) at the target radii
+  double porosity = 0;          // target porosity (the radii are the target radii)
+  double seconds = 0;
+  long overlapping_pairs = 0;   // pairs overlapping at s_out in this iteration
+  FbaStop stop = FbaStop::max_iterations;
+};
+
+struct FbaResult {
+  Packing packing;               // radii R_i, type structural, box as given
+  FbaStatus status;
+  double verified_max_overlap = 0;  // independent pair search on the result
+  std::vector<FbaStatus> history;   // every `history_every` iterations (and the last)
+};
+
+// Packs spheres of relative radii `relative_radius` into `box` (its periodic axes as given).
+// `history_every` > 0 records the convergence; `progress` is called every few iterations.
+FbaResult fba_pack(const Box& box, const std::vector<double>& relative_radius, const FbaParams& params, Random& rng,
+                   long history_every = 0, const std::function<void(const FbaStatus&)>& progress = {});
+
+// Relative radii (size / 2 of each class) of `count` spheres of the given classes
+// (largest-remainder counts per class), in a random order drawn from rng.
+std::vector<double> fba_class_radii(long count, const SizeClasses& classes, Random& rng);
+
+// Number of spheres of the given classes that fill `volume` to (1 - porosity) when the largest
+// class has diameter `max_diameter` [m] (rounded to nearest, >= 1).
+long fba_count_for_volume(double volume, double porosity, double max_diameter, const SizeClasses& classes);
+
+// Max relative overlap max (R_i + R_j - d_ij)/(R_i + R_j) over all pairs by brute force over
+// every pair and periodic image (O(N^2), for tests), 0 when none overlaps.
+double brute_force_max_overlap(const Packing& packing);
+
+}  // namespace packlab::generate

@@ -1,0 +1,175 @@
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+#include <string>
+
+#include "packlab/core/error.hpp"
+#include "packlab/generate/fba.hpp"
+#include "packlab/generate/opal.hpp"
+
+using namespace packlab;
+using namespace packlab::generate;
+
+namespace {
+
+double porosity_of(const Packing& p) {
+  double v = 0;
+  for (double r : p.radius) v += 4.0 / 3.0 * std::numbers::pi * r * r * r;
+  return 1.0 - v / p.box.volume();
+}
+
+Box cube(double edge, std::array<bool, 3> periodic = {true, true, true}) {
+  Box b;
+  b.lo = {-0.3 * edge, 0.1 * edge, 2.0 * edge};  // not at the origin on purpose
+  b.length = {edge, edge, edge};
+  b.periodic = periodic;
+  return b;
+}
+
+std::string error_of(const std::function<void()>& f) {
+  try {
+    f();
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+}  // namespace
+
+TEST(Fba, MonodisperseReachesPorosity038WithoutOverlap) {
+  Random rng(7);
+  FbaParams params;  // target 0.38, tolerance 1e-3
+  const auto r = fba_pack(cube(1.0), std::vector<double>(400, 1.0), params, rng);
+  EXPECT_EQ(r.status.stop, FbaStop::target_reached);
+  EXPECT_NEAR(porosity_of(r.packing), 0.38, 1e-12);
+  // Independent brute-force check over every pair and periodic image.
+  const double h = brute_force_max_overlap(r.packing);
+  EXPECT_LE(h, params.tolerance);
+  EXPECT_NEAR(h, r.verified_max_overlap, 1e-12);
+  EXPECT_NEAR(h, r.status.max_overlap, 1e-9);
+  for (const Vec3& x : r.packing.position)
+    for (int a = 0; a < 3; ++a) {
+      EXPECT_GE(x[a], r.packing.box.lo[a]);
+      EXPECT_LT(x[a], r.packing.box.hi()[a]);
+    }
+}
+
+TEST(Fba, TighterToleranceIsHonoured) {
+  Random rng(3);
+  FbaParams params;
+  params.tolerance = 1e-5;
+  const auto r = fba_pack(cube(1.0), std::vector<double>(300, 1.0), params, rng);
+  EXPECT_EQ(r.status.stop, FbaStop::target_reached);
+  EXPECT_LE(brute_force_max_overlap(r.packing), 1e-5);
+}
+
+TEST(Fba, PeriodicOnlyAlongXYWithWallsAlongZ) {
+  Random rng(11);
+  FbaParams params;
+  params.target_porosity = 0.40;
+  Box box = cube(1.0, {true, true, false});
+  box.length.z = 0.8;
+  const auto r = fba_pack(box, std::vector<double>(400, 1.0), params, rng);
+  EXPECT_EQ(r.status.stop, FbaStop::target_reached);
+  EXPECT_NEAR(porosity_of(r.packing), 0.40, 1e-12);
+  EXPECT_LE(brute_force_max_overlap(r.packing), params.tolerance);
+  // Whole spheres inside the walls along z; spheres cross the periodic faces along x, y.
+  bool crosses_x = false;
+  for (std::size_t i = 0; i < r.packing.size(); ++i) {
+    const Vec3& x = r.packing.position[i];
+    const double R = r.packing.radius[i];
+    EXPECT_GE(x.z - R, box.lo.z - 1e-12);
+    EXPECT_LE(x.z + R, box.hi().z + 1e-12);
+    crosses_x = crosses_x || x.x - R < box.lo.x || x.x + R > box.hi().x;
+  }
+  EXPECT_TRUE(crosses_x);
+}
+
+TEST(Fba, BidisperseSizesKeepTheirRatio) {
+  Random rng(5);
+  SizeClasses classes;
+  classes.sizes = {1.0, 0.6};
+  classes.fractions = {0.3, 0.7};
+  const auto rho = fba_class_radii(500, classes, rng);
+  ASSERT_EQ(rho.size(), 500u);
+  long big = 0;
+  for (double x : rho) big += x == 0.5 ? 1 : 0;
+  EXPECT_EQ(big, 150);
+  const auto r = fba_pack(cube(1.0), rho, FbaParams{}, rng);
+  EXPECT_EQ(r.status.stop, FbaStop::target_reached);
+  EXPECT_NEAR(porosity_of(r.packing), 0.38, 1e-12);
+  EXPECT_LE(brute_force_max_overlap(r.packing), 1e-3);
+  for (std::size_t i = 0; i < rho.size(); ++i)
+    EXPECT_NEAR(r.packing.radius[i] / r.packing.radius[0], rho[i] / rho[0], 1e-12);
+}
+
+TEST(Fba, SameSeedSamePackingOtherSeedOther) {
+  auto run = [](std::uint64_t seed) {
+    Random rng(seed);
+    return fba_pack(cube(1.0), std::vector<double>(200, 1.0), FbaParams{}, rng).packing;
+  };
+  const Packing a = run(42), b = run(42), c = run(43);
+  ASSERT_EQ(a.size(), b.size());
+  for (std::size_t i = 0; i < a.size(); ++i) EXPECT_EQ(a.position[i], b.position[i]);
+  EXPECT_NE(a.position[0], c.position[0]);
+}
+
+TEST(Fba, HistoryShowsTheOuterScaleShrinkingToTheTarget) {
+  Random rng(2);
+  const auto r = fba_pack(cube(1.0), std::vector<double>(200, 1.0), FbaParams{}, rng, 10);
+  ASSERT_GE(r.history.size(), 2u);
+  EXPECT_NEAR(r.history.front().outer_scale, std::cbrt(1.0 / 0.62), 1e-12);
+  for (std::size_t k = 1; k < r.history.size(); ++k) {
+    EXPECT_LE(r.history[k].outer_scale, r.history[k - 1].outer_scale);
+    EXPECT_GE(r.history[k].outer_scale, 1.0);
+  }
+  EXPECT_LE(r.history.back().max_overlap, 1e-3);
+}
+
+TEST(Fba, CountForVolumeFillsToThePorosity) {
+  SizeClasses mono;
+  const long n = fba_count_for_volume(1000.0, 0.38, 1.0, mono);
+  EXPECT_EQ(n, std::lround(0.62 * 1000.0 / (std::numbers::pi / 6.0)));
+}
+
+TEST(Fba, BadInputNamesKeyValueAndRange) {
+  Random rng(1);
+  FbaParams p;
+  p.target_porosity = 0.2;
+  const std::string m = error_of([&] { fba_pack(cube(1.0), std::vector<double>(10, 1.0), p, rng); });
+  EXPECT_NE(m.find("target_porosity = 0.2"), std::string::npos) << m;
+  EXPECT_NE(m.find("[0.30, 1)"), std::string::npos) << m;
+  FbaParams q;
+  q.tolerance = 0.0;
+  EXPECT_NE(error_of([&] { fba_pack(cube(1.0), std::vector<double>(10, 1.0), q, rng); }).find("tolerance"),
+            std::string::npos);
+  EXPECT_NE(error_of([&] { fba_pack(cube(1.0), std::vector<double>{1.0, -1.0}, FbaParams{}, rng); })
+                .find("relative radius = -1"),
+            std::string::npos);
+  // Two spheres in a periodic box smaller than their diameter.
+  EXPECT_NE(error_of([&] { fba_pack(cube(1.0), std::vector<double>(2, 1.0), FbaParams{}, rng); }).find("box length"),
+            std::string::npos);
+}
+
+TEST(Fba, RandomPoresDoNotOverlap) {
+  Random rng(9);
+  Box region = cube(4.0, {true, true, false});
+  RandomPores o;
+  o.diameter = 1.0;
+  o.count = 40;  // pore fraction 40 pi/6 / 64 = 0.33
+  const PoreSet pores = random_pores(region, o, rng);
+  ASSERT_EQ(pores.size(), 40u);
+  Packing p;
+  p.box = region;
+  for (std::size_t k = 0; k < pores.size(); ++k) {
+    EXPECT_EQ(pores.radius[k], 0.5);
+    p.add(pores.centre[k], pores.radius[k]);
+    EXPECT_GE(pores.centre[k].z, region.lo.z + 0.5 - 1e-12);
+    EXPECT_LE(pores.centre[k].z, region.hi().z - 0.5 + 1e-12);
+  }
+  EXPECT_LE(brute_force_max_overlap(p), 1e-3);
+  o.count = 80;  // fraction 0.65
+  EXPECT_NE(error_of([&] { random_pores(region, o, rng); }).find("< 0.6"), std::string::npos);
+}
