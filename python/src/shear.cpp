@@ -1,8 +1,192 @@
-// Placeholder registered by the lead; the owner replaces it.
+// packlab.bond, packlab.shear_test, packlab.calibrate_shear (issue #6): bonded models and the
+// oscillatory shear test of doh-elastic-properties §2.4 with keywords named like the options of
+// `packlab bond` and `packlab test shear`. The runs release the GIL; the optional progress
+// callback is called (throttled) with the GIL held.
+#include <fmt/format.h>
+
+#include <cmath>
+
 #include "common.hpp"
+#include "packlab/generate/bonding.hpp"
+#include "packlab/mechanics/shear_test.hpp"
 
 namespace packlab::python {
 
-void bind_shear(py::module_& /*m*/) {}
+namespace {
+
+using mechanics::ShearTestOptions;
+
+ShearTestOptions make_options(double normal_stiffness, double shear_stiffness, double normal_strength,
+                              double shear_strength, double friction, double damping, double density,
+                              const std::string& stiffness_rule, int cycles, double amplitude, long steps_per_cycle,
+                              int samples_per_cycle, int plate_layers, int regions, const std::string& orientations,
+                              bool relax, long relax_steps, int threads) {
+  ShearTestOptions o;
+  o.normal_stiffness = normal_stiffness;
+  o.shear_stiffness = shear_stiffness;
+  o.normal_strength = normal_strength;
+  o.shear_strength = shear_strength;
+  o.friction = friction;
+  o.damping = damping;
+  o.density = density;
+  o.stiffness_rule = stiffness_rule;
+  o.cycles = cycles;
+  o.amplitude = amplitude;
+  o.steps_per_cycle = steps_per_cycle;
+  o.samples_per_cycle = samples_per_cycle;
+  o.plate_layers = plate_layers;
+  o.regions = regions;
+  o.orientations = mechanics::shear_orientations(orientations);
+  o.relax = o.settle = relax;
+  o.relax_options.max_steps = relax_steps;
+  o.threads = threads;
+  mechanics::validate(o);
+  return o;
+}
+
+py::dict samples_columns(const mechanics::ShearRun& run) {
+  std::vector<long> cycle, step;
+  std::vector<double> time, phase, strain, stress, plate, kinetic, strain_energy;
+  for (const auto& s : run.samples) {
+    cycle.push_back(s.cycle);
+    step.push_back(s.step);
+    time.push_back(s.time);
+    phase.push_back(s.phase);
+    strain.push_back(s.strain);
+    stress.push_back(s.stress);
+    plate.push_back(s.plate_stress);
+    kinetic.push_back(s.kinetic_energy);
+    strain_energy.push_back(s.strain_energy);
+  }
+  py::dict d;
+  d["cycle"] = to_numpy(std::move(cycle));
+  d["step"] = to_numpy(std::move(step));
+  d["time"] = to_numpy(std::move(time));
+  d["phase"] = to_numpy(std::move(phase));
+  d["strain"] = to_numpy(std::move(strain));
+  d["stress"] = to_numpy(std::move(stress));
+  d["plate_stress"] = to_numpy(std::move(plate));
+  d["kinetic_energy"] = to_numpy(std::move(kinetic));
+  d["strain_energy"] = to_numpy(std::move(strain_energy));
+  return d;
+}
+
+py::dict result_dict(const mechanics::ShearTestResult& r) {
+  py::list per;
+  for (const auto& run : r.runs) {
+    py::dict d;
+    d["orientation"] = mechanics::orientation_name(run.orientation);
+    d["storage_modulus"] = run.storage_modulus;
+    d["complex_modulus"] = run.complex_modulus;
+    d["phase_angle"] = run.phase_angle;
+    d["plate_storage_modulus"] = run.plate_storage_modulus;
+    d["broken_bonds"] = run.broken_bonds;
+    d["max_bond_shear_force"] = run.max_bond_shear_force;
+    d["max_bond_tension"] = run.max_bond_tension;
+    d["max_kinetic_to_strain_energy"] = run.max_kinetic_to_strain;
+    d["time_step"] = run.time_step;
+    d["steps"] = run.steps;
+    d["seconds"] = run.seconds;
+    std::vector<double> g, delta;
+    for (const auto& c : run.cycles) {
+      g.push_back(c.storage_modulus);
+      delta.push_back(c.phase_angle);
+    }
+    d["cycle_storage_modulus"] = to_numpy(std::move(g));
+    d["cycle_phase_angle"] = to_numpy(std::move(delta));
+    d["samples"] = samples_columns(run);
+    per.append(d);
+  }
+  py::dict sm;
+  sm["mean"] = r.storage_modulus_mean;
+  sm["std"] = r.storage_modulus_std;
+  sm["per_orientation"] = per;
+  py::dict out;
+  out["storage_modulus"] = sm;
+  out["phase_angle"] = r.phase_angle_mean;
+  out["phase_angle_max_abs"] = r.phase_angle_max;
+  out["relaxation_steps"] = r.relaxed ? r.relax.steps : 0L;
+  out["relaxation_converged"] = r.relaxed && r.relax.converged;
+  out["packing"] = r.relaxed_packing;
+  out["seconds"] = r.seconds;
+  out["particle_steps_per_second"] = r.seconds > 0.0 ? r.particle_steps / r.seconds : 0.0;
+  return out;
+}
+
+}  // namespace
+
+void bind_shear(py::module_& m) {
+  m.def(
+      "shear_test",
+      [](const Packing& packing, double normal_stiffness, double shear_stiffness, double normal_strength,
+         double shear_strength, double friction, double damping, double density, const std::string& stiffness_rule,
+         int cycles, double amplitude, long steps_per_cycle, int samples_per_cycle, int plate_layers, int regions,
+         const std::string& orientations, bool relax, long relax_steps, int threads, py::object progress,
+         double progress_interval) {
+        ShearTestOptions o = make_options(normal_stiffness, shear_stiffness, normal_strength, shear_strength, friction,
+                                          damping, density, stiffness_rule, cycles, amplitude, steps_per_cycle,
+                                          samples_per_cycle, plate_layers, regions, orientations, relax, relax_steps,
+                                          threads);
+        ProgressCallback callback(progress, progress_interval);
+        o.progress = [&](const std::string& stage, long done, long total) { callback.tick(false, stage, done, total); };
+        mechanics::ShearTestResult r;
+        {
+          py::gil_scoped_release nogil;
+          r = mechanics::run_shear_test(packing, o);
+        }
+        return result_dict(r);
+      },
+      py::arg("packing"), py::kw_only(), py::arg("normal_stiffness") = 100.0, py::arg("shear_stiffness") = 10.0,
+      py::arg("normal_strength") = 1e-4, py::arg("shear_strength") = 1e-6, py::arg("friction") = 0.0,
+      py::arg("damping") = 0.9, py::arg("density") = 3690.0, py::arg("stiffness_rule") = "particle",
+      py::arg("cycles") = 10, py::arg("amplitude") = 1e-3, py::arg("steps_per_cycle") = 20000,
+      py::arg("samples_per_cycle") = 40, py::arg("plate_layers") = 3, py::arg("regions") = 3,
+      py::arg("orientations") = "all", py::arg("relax") = true, py::arg("relax_steps") = 100000,
+      py::arg("threads") = 1, py::arg("progress") = py::none(), py::arg("progress_interval") = 0.5, R"doc(
+`packlab test shear` from Python: the oscillatory shear test of a bonded periodic packing
+(doh-elastic-properties §2.4). Returns a dict: storage_modulus {mean, std, per_orientation: [{orientation,
+storage_modulus, complex_modulus, phase_angle, plate_storage_modulus, broken_bonds, cycle_storage_modulus,
+cycle_phase_angle, samples: {cycle, step, time, phase, strain, stress, plate_stress, ...}}]} [Pa],
+phase_angle [rad], packing (the relaxed structure), seconds. Keywords as the command-line options;
+stiffnesses [N/m] are particle stiffnesses under stiffness_rule "particle" (contacts and bonds act with k/2).
+progress(stage, done, total) is called with the GIL held at most every progress_interval seconds.
+)doc");
+
+  m.def(
+      "calibrate_shear",
+      [](const Packing& packing, double target, double normal_stiffness, double shear_stiffness, double damping,
+         double density, const std::string& stiffness_rule, int cycles, double amplitude, long steps_per_cycle,
+         const std::string& orientations, double tolerance, int threads) {
+        ShearTestOptions o = make_options(normal_stiffness, shear_stiffness, 1e-4, 1e-6, 0.0, damping, density,
+                                          stiffness_rule, cycles, amplitude, steps_per_cycle, 40, 3, 3, orientations,
+                                          true, 100000, threads);
+        mechanics::ShearCalibrationResult r;
+        {
+          py::gil_scoped_release nogil;
+          r = mechanics::calibrate_normal_stiffness(packing, target, o, tolerance);
+        }
+        py::dict d;
+        d["normal_stiffness"] = r.normal_stiffness;
+        d["shear_stiffness"] = r.shear_stiffness;
+        d["storage_modulus"] = r.storage_modulus;
+        d["converged"] = r.converged;
+        d["iterations"] = r.iterations;
+        d["evaluations"] = r.evaluations;
+        d["reason"] = r.reason;
+        d["tried_normal_stiffness"] = to_numpy(std::vector<double>(r.tried_normal_stiffness));
+        d["tried_storage_modulus"] = to_numpy(std::vector<double>(r.tried_storage_modulus));
+        return d;
+      },
+      py::arg("packing"), py::arg("target"), py::kw_only(), py::arg("normal_stiffness") = 100.0,
+      py::arg("shear_stiffness") = 10.0, py::arg("damping") = 0.9, py::arg("density") = 3690.0,
+      py::arg("stiffness_rule") = "particle", py::arg("cycles") = 10, py::arg("amplitude") = 1e-3,
+      py::arg("steps_per_cycle") = 20000, py::arg("orientations") = "all", py::arg("tolerance") = 0.005,
+      py::arg("threads") = 1, R"doc(
+`packlab calibrate shear` from Python: the particle normal stiffness k_n [N/m] (k_s following at the
+ratio shear_stiffness / normal_stiffness) for which the mean storage modulus equals `target` [Pa];
+Newton with a finite-difference derivative. Returns a dict (normal_stiffness, shear_stiffness,
+storage_modulus, converged, iterations, evaluations, reason, tried_*).
+)doc");
+}
 
 }  // namespace packlab::python

@@ -36,6 +36,7 @@ void add_calibrate_compress(CLI::App& calibrate);
 // Config-file references (io/config.hpp schemas) of the commands that read one, and the
 // `config-keys` command printing them all.
 std::string vem_config_reference();
+std::string shear_config_reference();  // also read by `calibrate shear`
 std::string config_reference();
 void add_config_keys(CLI::App& app);
 
