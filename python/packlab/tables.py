@@ -24,6 +24,10 @@ def write_table(path, columns, comment=None):
             return "1" if v else "0"
         if isinstance(v, (int, np.integer)):
             return str(int(v))
+        if isinstance(v, (str, np.str_)):
+            if "," in v or "\n" in v:
+                raise ValueError(f"write_table: text values cannot hold ',' or newlines: {v!r}")
+            return str(v)
         return f"{float(v):.17g}"
 
     folder = os.path.dirname(os.path.abspath(path))
