@@ -19,18 +19,6 @@ namespace {
 
 py::object namespace_of(py::dict values) { return py::module_::import("types").attr("SimpleNamespace")(**values); }
 
-std::array<bool, 3> periodic_axes(const std::string& s) {
-  std::array<bool, 3> p{false, false, false};
-  if (s == "none") return p;
-  for (char c : s) {
-    const auto k = std::string("xyz").find(c);
-    if (k == std::string::npos || p[k])
-      fail_input("periodic = " + s + ": must be a subset of xyz without repeats (e.g. xy, xyz) or none");
-    p[k] = true;
-  }
-  return p;
-}
-
 }  // namespace
 
 void bind_opal(py::module_& m) {
@@ -54,7 +42,7 @@ void bind_opal(py::module_& m) {
         require(diameter > 0.0 && std::isfinite(diameter), "diameter", diameter, "> 0 m");
         if ((particles > 0) == box.has_value()) fail_input("particles and box: give exactly one of them");
         Box b;
-        b.periodic = periodic_axes(periodic);
+        b.periodic = generate::periodic_axes_from_name(periodic);
         long n = particles;
         if (box) {
           for (double l : *box) require(l > 0.0, "box", l, "> 0 m");

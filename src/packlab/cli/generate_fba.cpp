@@ -25,22 +25,6 @@
 
 namespace packlab::cli {
 
-namespace {
-
-std::array<bool, 3> periodic_axes(const std::string& s) {
-  std::array<bool, 3> p{false, false, false};
-  if (s == "none") return p;
-  for (char c : s) {
-    const auto k = std::string("xyz").find(c);
-    if (k == std::string::npos || p[k])
-      fail_input("periodic = " + s + ": must be a subset of xyz without repeats (e.g. xy, xyz) or none");
-    p[k] = true;
-  }
-  return p;
-}
-
-}  // namespace
-
 void add_generate_fba(CLI::App& generate) {
   struct Options {
     long particles = 0;
@@ -94,7 +78,7 @@ void add_generate_fba(CLI::App& generate) {
     if ((opt->particles > 0) == !opt->box.empty())
       fail_input("--particles and --box: give exactly one of them");
     Box box;
-    box.periodic = periodic_axes(opt->periodic);
+    box.periodic = generate::periodic_axes_from_name(opt->periodic);
     const double smax = *std::max_element(classes.sizes.begin(), classes.sizes.end());
     long n = opt->particles;
     if (!opt->box.empty()) {

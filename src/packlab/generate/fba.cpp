@@ -214,4 +214,16 @@ FbaResult fba_pack(const Box& box, const std::vector<double>& relative_radius, c
   return result;
 }
 
+std::array<bool, 3> periodic_axes_from_name(const std::string& s) {
+  std::array<bool, 3> p{false, false, false};
+  if (s == "none") return p;
+  for (char c : s) {
+    const auto k = std::string("xyz").find(c);
+    if (k == std::string::npos || p[k])
+      fail_input("periodic = " + s + ": must be a subset of xyz without repeats (e.g. xy, xyz) or none");
+    p[k] = true;
+  }
+  return p;
+}
+
 }  // namespace packlab::generate

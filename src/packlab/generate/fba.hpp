@@ -75,6 +75,9 @@ struct FbaResult {
 FbaResult fba_pack(const Box& box, const std::vector<double>& relative_radius, const FbaParams& params, Random& rng,
                    long history_every = 0, const std::function<void(const FbaStatus&)>& progress = {});
 
+// Periodic axes from a name: a subset of "xyz" ("xy", "z", ...) or "none" (InputError otherwise).
+std::array<bool, 3> periodic_axes_from_name(const std::string& name);
+
 // Relative radii (size / 2 of each class) of `count` spheres of the given classes
 // (largest-remainder counts per class), in a random order drawn from rng.
 std::vector<double> fba_class_radii(long count, const SizeClasses& classes, Random& rng);
