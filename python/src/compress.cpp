@@ -1,8 +1,183 @@
-// Placeholder registered by the lead; the owner replaces it.
+// packlab.compress / packlab.fit_porosity_law: the uniaxial compression test of a bonded model
+// (mechanics/compression_test.hpp) and the porosity laws (analyze/porosity_laws.hpp) from Python.
+#include <fmt/format.h>
+
 #include "common.hpp"
+#include "packlab/analyze/porosity_laws.hpp"
+#include "packlab/core/packing.hpp"
+#include "packlab/mechanics/compression_test.hpp"
 
 namespace packlab::python {
 
-void bind_compress(py::module_& /*m*/) {}
+namespace {
+
+py::dict curve_columns(const std::vector<mechanics::CompressionPoint>& curve) {
+  std::vector<double> time, displacement, strain, force, stress, kinetic, strain_energy, broken;
+  for (const auto& p : curve) {
+    time.push_back(p.time);
+    displacement.push_back(p.displacement);
+    strain.push_back(p.strain);
+    force.push_back(p.force);
+    stress.push_back(p.stress);
+    kinetic.push_back(p.kinetic_energy);
+    strain_energy.push_back(p.strain_energy);
+    broken.push_back(static_cast<double>(p.broken_bonds));
+  }
+  py::dict d;
+  d["time"] = to_numpy(std::move(time));
+  d["displacement"] = to_numpy(std::move(displacement));
+  d["strain"] = to_numpy(std::move(strain));
+  d["force"] = to_numpy(std::move(force));
+  d["stress"] = to_numpy(std::move(stress));
+  d["kinetic_energy"] = to_numpy(std::move(kinetic));
+  d["strain_energy"] = to_numpy(std::move(strain_energy));
+  d["broken_bonds"] = to_numpy(std::move(broken));
+  return d;
+}
+
+}  // namespace
+
+void bind_compress(py::module_& m) {
+  using mechanics::CompressionResult;
+  py::class_<CompressionResult>(m, "CompressionResult", "Result of packlab.compress (SI units).")
+      .def_readonly("youngs_modulus", &CompressionResult::youngs_modulus, "Young's modulus (max-tangent fit) [Pa]")
+      .def_readonly("strength", &CompressionResult::strength, "Peak stress [Pa]")
+      .def_readonly("strain_at_peak", &CompressionResult::strain_at_peak)
+      .def_readonly("broken_bonds", &CompressionResult::broken_bonds)
+      .def_readonly("height", &CompressionResult::height, "H0 [m]")
+      .def_readonly("area", &CompressionResult::area, "Cross-section [m^2]")
+      .def_readonly("time_step", &CompressionResult::time_step, "[s]")
+      .def_readonly("steps", &CompressionResult::steps)
+      .def_readonly("bonds", &CompressionResult::bonds)
+      .def_readonly("fixed_particles", &CompressionResult::fixed_particles)
+      .def_readonly("max_kinetic_ratio", &CompressionResult::max_kinetic_ratio)
+      .def_readonly("stop_reason", &CompressionResult::stop_reason)
+      .def_readonly("model", &CompressionResult::model, "The model after the test (bond states)")
+      .def_readonly("seconds", &CompressionResult::seconds)
+      .def_property_readonly(
+          "fit_window", [](const CompressionResult& r) { return std::make_pair(r.modulus.strain_begin, r.modulus.strain_end); },
+          "Strain range of the modulus fit")
+      .def_property_readonly(
+          "curve", [](const CompressionResult& r) { return curve_columns(r.curve); },
+          "Columns of curve.csv as a dict of arrays: time, displacement, strain, force, stress, ...")
+      .def_property_readonly(
+          "breaks",
+          [](const CompressionResult& r) {
+            std::vector<double> time;
+            std::vector<Vec3> position;
+            std::vector<long> bond;
+            for (const auto& b : r.breaks) {
+              time.push_back(b.time);
+              position.push_back(b.position);
+              bond.push_back(static_cast<long>(b.bond));
+            }
+            py::dict d;
+            d["bond"] = to_numpy(std::move(bond));
+            d["time"] = to_numpy(std::move(time));
+            d["position"] = to_numpy(std::move(position));
+            return d;
+          },
+          "Bond failures: bond index into model.bonds, time [s], position (midpoint) [m]")
+      .def_property_readonly(
+          "snapshots",
+          [](const CompressionResult& r) {
+            py::list out;
+            for (const auto& s : r.snapshots) {
+              py::dict d;
+              d["strain"] = s.strain;
+              d["stress"] = s.stress;
+              d["bond_strain"] = to_numpy(std::vector<double>(s.bond_strain));
+              std::vector<double> flat;
+              for (const auto& a : s.particle_stress) flat.insert(flat.end(), a.begin(), a.end());
+              py::array stress = to_numpy(std::move(flat));
+              d["particle_stress"] = stress.attr("reshape")(py::make_tuple(static_cast<py::ssize_t>(s.particle_stress.size()), 3, 3));
+              py::list types;
+              for (const auto& t : mechanics::stress_by_type(r.model, s.particle_stress))
+                types.append(py::dict(py::arg("type") = t.type, py::arg("particles") = t.particles,
+                                      py::arg("mean") = t.mean, py::arg("sd") = t.sd));
+              d["stress_by_type"] = types;
+              out.append(d);
+            }
+            return out;
+          },
+          "Snapshots at snapshot_strains: strain, stress, bond_strain, particle_stress (N x 3 x 3), stress_by_type")
+      .def("__repr__", [](const CompressionResult& r) {
+        return fmt::format("<CompressionResult: E = {:.4g} Pa, strength = {:.4g} Pa, {} broken bonds>", r.youngs_modulus,
+                           r.strength, r.broken_bonds);
+      });
+
+  m.def(
+      "compress",
+      [](const Packing& model, double bond_youngs_modulus, double bond_poisson, double bond_strength, double density,
+         double titania_youngs_modulus, double titania_poisson, double titania_strength, double strain_rate,
+         double quasi_static, double max_strain, double stop_drop, const std::string& sides, double substrate_layers,
+         double damping, double time_step, long samples, std::vector<double> snapshot_strains, int threads,
+         py::object progress, double progress_interval) {
+        mechanics::CompressionSetup s;
+        s.materials.silica_youngs_modulus = bond_youngs_modulus;
+        s.materials.silica_poisson_ratio = bond_poisson;
+        s.materials.silica_strength = bond_strength;
+        s.materials.silica_density = density;
+        s.materials.titania_youngs_modulus = titania_youngs_modulus;
+        s.materials.titania_poisson_ratio = titania_poisson;
+        s.materials.titania_strength = titania_strength;
+        s.materials.damping = damping;
+        s.strain_rate = strain_rate;
+        s.quasi_static = quasi_static;
+        s.options.max_strain = max_strain;
+        s.options.stop_drop = stop_drop;
+        s.options.sides = sides;
+        s.options.substrate_layers = substrate_layers;
+        s.options.time_step = time_step;
+        s.options.samples = samples;
+        s.options.threads = threads;
+        s.snapshot_strains = std::move(snapshot_strains);
+        s.finish(model);
+        ProgressCallback callback(progress, progress_interval);
+        if (!progress.is_none())
+          s.options.on_point = [&](const mechanics::CompressionPoint& p) { callback.tick(false, p.strain, p.stress); };
+        py::gil_scoped_release nogil;
+        return mechanics::run_compression(model, s.options);
+      },
+      py::arg("model"), py::kw_only(), py::arg("bond_youngs_modulus") = 6.53e9, py::arg("bond_poisson") = 0.17,
+      py::arg("bond_strength") = 94.3e6, py::arg("density") = 1297.0, py::arg("titania_youngs_modulus") = 17.89e9,
+      py::arg("titania_poisson") = 0.28, py::arg("titania_strength") = 834e6, py::arg("strain_rate") = 0.0,
+      py::arg("quasi_static") = 1e-4, py::arg("max_strain") = 0.05, py::arg("stop_drop") = 0.6,
+      py::arg("sides") = "periodic", py::arg("substrate_layers") = 2.0, py::arg("damping") = 0.7,
+      py::arg("time_step") = 0.0, py::arg("samples") = 400, py::arg("snapshot_strains") = std::vector<double>{},
+      py::arg("threads") = 1, py::arg("progress") = py::none(), py::arg("progress_interval") = 0.5, R"doc(
+`packlab test compress` from Python: uniaxial compression of a bonded model (bonds in
+model.bonds, e.g. from packlab.add_bonds or a .vtu of `packlab bond` / `packlab build opal`) by
+a plate moving down at strain_rate [1/s] (0 = automatic: quasi_static strain per elastic-wave
+transit). Silica = bond material 0 (and particle types structural/substrate), titania = bond
+material 1 (coating particles). Returns a CompressionResult (youngs_modulus, strength [Pa],
+curve, snapshots, breaks, model). The GIL is released while it runs; progress(strain, stress)
+is called at most every progress_interval seconds.
+)doc");
+
+  using analyze::PorosityFit;
+  py::class_<PorosityFit>(m, "PorosityFit", "Fit of a porosity law (eq. 22-26).")
+      .def_property_readonly("law", [](const PorosityFit& f) { return analyze::porosity_law_name(f.law); })
+      .def_readonly("e0", &PorosityFit::e0)
+      .def_readonly("e0_err", &PorosityFit::e0_err)
+      .def_readonly("exponent", &PorosityFit::exponent, "b (exponential) or m (power)")
+      .def_readonly("exponent_err", &PorosityFit::exponent_err)
+      .def_readonly("rss", &PorosityFit::rss)
+      .def_readonly("rms_relative", &PorosityFit::rms_relative)
+      .def_readonly("r2", &PorosityFit::r2)
+      .def("__call__", &PorosityFit::model, py::arg("porosity"))
+      .def("__repr__", [](const PorosityFit& f) {
+        return fmt::format("<PorosityFit {}: E0 = {:.4g}, exponent = {:.4g} +- {:.2g}, rms rel. {:.3g}>",
+                           analyze::porosity_law_name(f.law), f.e0, f.exponent, f.exponent_err, f.rms_relative);
+      });
+  m.def(
+      "fit_porosity_law",
+      [](const std::string& law, py::object porosity, py::object value, double fixed_e0) {
+        return analyze::fit_porosity_law(analyze::porosity_law_from_name(law), from_numpy<double>(porosity, "porosity"),
+                                         from_numpy<double>(value, "value"), fixed_e0);
+      },
+      py::arg("law"), py::arg("porosity"), py::arg("value"), py::arg("fixed_e0") = 0.0,
+      "Fits 'exponential' E0 exp(-b eps) (eq. 22, 26) or 'power' E0 (1 - eps)^m (eq. 23); fixed_e0 > 0 holds E0.");
+}
 
 }  // namespace packlab::python

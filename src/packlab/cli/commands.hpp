@@ -36,7 +36,8 @@ void add_calibrate_compress(CLI::App& calibrate);
 // Config-file references (io/config.hpp schemas) of the commands that read one, and the
 // `config-keys` command printing them all.
 std::string vem_config_reference();
-std::string shear_config_reference();  // also read by `calibrate shear`
+std::string shear_config_reference();     // also read by `calibrate shear`
+std::string compress_config_reference();  // also read by `calibrate compress`
 std::string config_reference();
 void add_config_keys(CLI::App& app);
 

@@ -14,7 +14,7 @@ std::string config_reference() {
       "are TOML; a dotted key `a.b` is the key `b` in the table `[a]`. Unknown keys and values of the\n"
       "wrong type stop the command with one message naming the file and the key (exit code 2).\n"
       "Command-line flags override the file.\n\n";
-  for (const std::string& section : {vem_config_reference(), shear_config_reference()}) out += section;
+  for (const std::string& section : {vem_config_reference(), shear_config_reference(), compress_config_reference()}) out += section;
   return out;
 }
 

@@ -79,8 +79,13 @@ struct ContactBond {
 // Failure (eq. 16-17): sigma = |F_n|/A + |M_t| R_b / I >= sigma_max or
 // tau = |F_t|/A + |M_n| R_b / J >= tau_max. (The extracted eq. 16/17 pair F_n with "M^n" and I,
 // F_t with "M^t" and J; bending makes normal stress through I and torsion shear stress through
-// J, which is what is used.) A failed bond stays for relaxation_time while its stiffness
-// decays linearly to zero (the paper's 1 % per 1e-11 s over 1 ns), then it is removed.
+// J, which is what is used.) Which bonds the normal criterion (eq. 16) breaks is the named
+// option `compressive_breakage`: false (default, as MUSEN's elastic bond, the paper's code,
+// whose COMPRESSIVE_BREAK parameter defaults to 0) applies it to stretched bonds only (L > L0),
+// so compressed bonds fail by shear (eq. 17) alone; true applies it to every bond, as eq. 16
+// reads. A failed bond stays for relaxation_time while its stiffness decays linearly to zero
+// (the paper's 1 % per 1e-11 s over 1 ns: 100 steps of 1 % of the initial stiffness), then it
+// is removed.
 struct ElasticBond {
   static constexpr const char* name = "elastic";
   struct Params {
@@ -90,6 +95,7 @@ struct ElasticBond {
     double shear_strength;       // tau_max [Pa]
     double radius_ratio = 1.0;   // R_b / min(r_i, r_j) [-]
     double relaxation_time = 1e-9;  // [s]
+    bool compressive_breakage = false;  // eq. 16 also for compressed bonds (see above)
   };
   struct State {
     Vec3 tangential{};            // xi_t [m]
@@ -135,7 +141,7 @@ struct ElasticBond {
     if (s.failed_at < 0.0) {
       const double sigma = std::abs(normal_force) / area + norm(s.bending) * rb / inertia;   // eq. 16
       const double tau = norm(shear_force) / area + norm(s.torsion) * rb / polar;           // eq. 17
-      if (sigma >= p.normal_strength || tau >= p.shear_strength) {
+      if ((sigma >= p.normal_strength && (p.compressive_breakage || length > l0)) || tau >= p.shear_strength) {
         s.failed_at = g.time;
         out.failed = true;
       }

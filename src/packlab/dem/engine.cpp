@@ -175,6 +175,7 @@ Engine::Engine(const Packing& packing, const EngineConfig& config) : packing_(pa
   thread_torque_.assign(threads_, {});
   thread_totals_.assign(threads_, {});
   thread_wall_force_.assign(threads_, {});
+  thread_breaks_.assign(threads_, {});
 
   neighbors_.set_skin(config_.skin_ratio * r_max);
   masses_changed();
@@ -282,7 +283,9 @@ ContactGeometry Engine::pair_geometry(std::size_t i, std::size_t j, const Vec3& 
   g.dt = dt_;
   g.radius_i = P.radius[i];
   g.radius_j = P.radius[j];
-  g.effective_mass = 1.0 / (P.inverse_mass[i] + P.inverse_mass[j]);
+  // Two fixed particles: no relative motion to damp (0, not infinity, so no NaN reaches them).
+  const double inverse_sum = P.inverse_mass[i] + P.inverse_mass[j];
+  g.effective_mass = inverse_sum > 0.0 ? 1.0 / inverse_sum : 0.0;
   g.spin_i = P.angular_velocity[i];
   g.spin_j = P.angular_velocity[j];
   g.relative_spin = P.angular_velocity[j] - P.angular_velocity[i];
@@ -522,6 +525,21 @@ std::vector<std::array<double, 9>> particle_stress(const ContactForces& forces, 
   return stress;
 }
 
+std::vector<double> Engine::bond_strains() const {
+  std::vector<double> strain(bonds_.i.size(), std::numeric_limits<double>::quiet_NaN());
+  const auto& P = particles_;
+  std::vector<std::uint8_t> failed(bonds_.i.size(), 0);
+  if (const auto* h = std::get_if<std::vector<ElasticBond::State>>(&bonds_.history))
+    for (std::size_t b = 0; b < h->size(); ++b) failed[b] = (*h)[b].failed_at >= 0.0;
+  for (std::size_t b = 0; b < bonds_.i.size(); ++b) {
+    if (bonds_.state[b] != 0 || failed[b] || !(bonds_.rest_length[b] > 0.0)) continue;
+    const std::size_t i = static_cast<std::size_t>(bonds_.i[b]), j = static_cast<std::size_t>(bonds_.j[b]);
+    const Vec3 d = P.position[j] + packing_.box.shift_vector(bond_image_now(b)) - P.position[i];
+    strain[b] = (norm(d) - bonds_.rest_length[b]) / bonds_.rest_length[b];
+  }
+  return strain;
+}
+
 std::size_t Engine::intact_bonds() const {
   std::size_t count = 0;
   for (int st : bonds_.state) count += st == 0;
@@ -545,7 +563,10 @@ void Engine::bond_forces(int thread, Vec3* force, Vec3* torque, Totals& local) {
     g.rest_length = bonds_.rest_length[b];
     const auto& params = bond_params<BondLaw>(b);
     const BondForce f = BondLaw::evaluate(g, params, histories[b]);
-    if (f.failed) ++local.bond_breaks;
+    if (f.failed) {
+      ++local.bond_breaks;
+      thread_breaks_[thread].push_back(BondBreak{b, time_, box.wrap(P.position[i] + 0.5 * d)});
+    }
     if (f.broken) {
       bonds_.state[b] = 1;
       // The pair interacts through the contact law from the next step on. Only this thread
@@ -647,7 +668,9 @@ void Engine::pair_forces(ContactModel<Law>& model, Totals& totals) {
         // Unused by laws that do not need them (the compiler drops the loads).
         g.radius_i = ri;
         g.radius_j = rad[j];
-        g.effective_mass = 1.0 / (inverse_mass_i + inverse_mass[j]);
+        // Two fixed particles: 0, not infinity (a select, no branch), so no NaN reaches them.
+        const double inverse_sum = inverse_mass_i + inverse_mass[j];
+        g.effective_mass = inverse_sum > 0.0 ? 1.0 / inverse_sum : 0.0;
         g.spin_i = wi;
         g.spin_j = w[j];
         const auto& pair_params = params_i[type[j]];
@@ -701,6 +724,11 @@ void Engine::pair_forces(ContactModel<Law>& model, Totals& totals) {
     wall_force_[m] = sum;
   }
   broken_bonds_ += totals.bond_breaks;
+  if (totals.bond_breaks > 0)
+    for (int t = 0; t < T; ++t) {
+      breaks_.insert(breaks_.end(), thread_breaks_[t].begin(), thread_breaks_[t].end());
+      thread_breaks_[t].clear();
+    }
   if constexpr (Measure) {
     for (int t = 0; t < T; ++t) {
       totals.contacts += thread_totals_[t].contacts;
@@ -819,6 +847,7 @@ void Engine::save_state(std::ostream& out) const {
   binary::write_vector(out, wall_force_);
   neighbors_.save(out);
   std::visit([&](const auto& model) { binary::write_vector(out, model.history); }, model_);
+  binary::write_vector(out, breaks_);
 }
 
 void Engine::load_state(std::istream& in) {
@@ -878,6 +907,7 @@ void Engine::load_state(std::istream& in) {
   if (neighbors_.particle_count() != n || std::visit([&](auto& m) { return m.history.size(); }, model_) !=
                                               neighbors_.pair_count())
     fail_input("checkpoint is damaged: contact histories do not match the neighbour list");
+  binary::read_vector(in, breaks_, "bond breaks");
   mark_bonded_pairs();
 }
 

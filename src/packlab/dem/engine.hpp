@@ -74,6 +74,15 @@ struct Wall {
 // Names of the registered contact laws (the user-facing strings).
 std::vector<std::string> contact_law_names();
 
+// A bond failure (a breakage criterion met, eq. 16-17 / the contact bond's strengths): the
+// bond's index in the packing's bond list, the time and the bond's midpoint at that step
+// (wrapped into the box) [s, m].
+struct BondBreak {
+  std::size_t bond = 0;
+  double time = 0.0;
+  Vec3 position{};
+};
+
 struct Diagnostics {
   long step = 0;
   double time = 0.0;                   // [s]
@@ -151,6 +160,11 @@ class Engine {
   int threads() const { return threads_; }
   long neighbor_builds() const { return neighbors_.builds(); }
   std::size_t intact_bonds() const;
+  // Axial strain (L - L0) / L0 of every bond (packing's bond order; positive = stretched);
+  // NaN for bonds that have failed (relaxing or removed).
+  std::vector<double> bond_strains() const;
+  // Every bond failure so far, in the order they happened (thread order within a step).
+  const std::vector<BondBreak>& bond_breaks() const { return breaks_; }
 
   // The forces of every touching pair, intact bond and wall contact at the current state
   // (the stored shear histories; no step is taken and nothing changes).
@@ -166,7 +180,9 @@ class Engine {
   std::size_t particle_count() const { return particles_.size(); }
 
   // Particle arrays in the engine's internal order: sorted along a space-filling curve for
-  // cache locality. Entry k holds the packing's particle original_index()[k].
+  // cache locality. Entry k holds the packing's particle original_index()[k]. A fixed particle
+  // (zero inverse mass) keeps whatever velocity it is given here (zero from the constructor):
+  // setting one drives it at that velocity, e.g. the grip of a compression test.
   const ParticleStore& particles() const { return particles_; }
   ParticleStore& particles() { return particles_; }
   const std::vector<int>& original_index() const { return original_index_; }
@@ -238,6 +254,8 @@ class Engine {
   BondList bonds_;
   std::vector<std::uint8_t> pair_bonded_;  // per neighbour pair: the contact law is off
   std::size_t broken_bonds_ = 0;
+  std::vector<BondBreak> breaks_;
+  std::vector<std::vector<BondBreak>> thread_breaks_;  // per thread, this step
   std::vector<Wall> walls_;
   std::vector<Vec3> wall_history_;                      // [particle * walls + wall] (contact law history)
   std::vector<Vec3> wall_force_;                        // per wall, last step

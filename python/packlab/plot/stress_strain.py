@@ -1,0 +1,55 @@
+"""Compression test: stress-strain curve with the Young's modulus fit and the peak, or the
+force-displacement curve (the ``curve.csv`` written by ``packlab test compress``). Several
+curves may be given (e.g. two strain rates) and are drawn together."""
+
+import argparse
+
+from packlab.plot import new_figure, read_csv, save
+
+
+def figure(curve_csvs, modulus=0.0, intercept=0.0, fit_begin=0.0, fit_end=0.0, force_displacement=False, labels=None):
+    fig, ax = new_figure()
+    if isinstance(curve_csvs, str):
+        curve_csvs = [curve_csvs]
+    for k, path in enumerate(curve_csvs):
+        data = read_csv(path)
+        label = labels[k] if labels and k < len(labels) else (path if len(curve_csvs) > 1 else None)
+        if force_displacement:
+            ax.plot(data["displacement"] * 1e9, data["force"] * 1e6, label=label)
+        else:
+            ax.plot(data["strain"] * 100, data["stress"] * 1e-6, label=label)
+            peak = data["stress"].argmax()
+            ax.plot([data["strain"][peak] * 100], [data["stress"][peak] * 1e-6], "kv", ms=5)
+    if force_displacement:
+        ax.set_xlabel("plate displacement [nm]")
+        ax.set_ylabel("plate force [µN]")
+        ax.set_title("force–displacement")
+    else:
+        if modulus > 0 and fit_end > fit_begin:
+            import numpy as np
+
+            e = np.linspace(fit_begin, fit_end, 10)
+            ax.plot(e * 100, (modulus * e + intercept) * 1e-6, "r--", lw=2,
+                    label=f"E = {modulus * 1e-9:.3g} GPa")
+        ax.set_xlabel("strain [%]")
+        ax.set_ylabel("stress [MPa]")
+        ax.set_title("stress–strain")
+    if ax.get_legend_handles_labels()[0]:
+        ax.legend(fontsize=8)
+    return fig
+
+
+def main(argv):
+    parser = argparse.ArgumentParser(prog="packlab.plot stress_strain")
+    parser.add_argument("curve_csv", nargs="+")
+    parser.add_argument("--modulus", type=float, default=0.0)
+    parser.add_argument("--intercept", type=float, default=0.0)
+    parser.add_argument("--fit-begin", type=float, default=0.0)
+    parser.add_argument("--fit-end", type=float, default=0.0)
+    parser.add_argument("--force-displacement", action="store_true")
+    parser.add_argument("--labels", nargs="*")
+    parser.add_argument("--out", required=True)
+    args = parser.parse_args(argv)
+    save(figure(args.curve_csv, args.modulus, args.intercept, args.fit_begin, args.fit_end, args.force_displacement,
+                args.labels), args.out)
+    return 0

@@ -1,0 +1,76 @@
+"""packlab.compress and packlab.fit_porosity_law: the compression test from Python (same
+physics as `packlab test compress`) and the porosity laws of bpm-inverse-opals eq. 22-26."""
+
+import math
+
+import numpy as np
+import pytest
+
+import packlab
+
+R = 7.5e-9
+E, NU = 6.53e9, 0.17
+
+
+def sc_column(layers=8):
+    """3 x 3 x layers simple cubic lattice, periodic, with beam bonds to all 26 neighbours
+    (the pairs within 1.75 d), built with Packing.set_bonds."""
+    p = packlab.generate_lattice(type="sc", cells=(3, 3, layers), radius=R)
+    d = 2 * R
+    cells = np.array([3, 3, layers])
+    index = {tuple(np.rint((x - d / 4) / d).astype(int)): k for k, x in enumerate(p.positions)}
+    bi, bj, image = [], [], []
+    for (a, b, c), i in index.items():
+        for off in np.ndindex(3, 3, 3):
+            o = np.array(off) - 1
+            if (o[0], o[1], o[2]) <= (0, 0, 0):
+                continue  # each pair once: the lexicographically positive half of the 26 neighbours
+            n = np.array([a, b, c]) + o
+            bi.append(i)
+            bj.append(index[tuple(n % cells)])
+            image.append(n // cells)
+    p.set_bonds(i=np.array(bi), j=np.array(bj), image=np.array(image))
+    return p
+
+
+def test_glued_plate_gives_the_closed_form_modulus_of_a_simple_cubic_column():
+    # Constrained modulus of the SC beam lattice with 26 bonded neighbours (tests/mechanics).
+    g = E / (2 * (1 + NU))
+    m = math.pi / 4 * (E + math.sqrt(2) * (E + g) + 4 * (E + 2 * g) / (3 * math.sqrt(3)))
+    calls = []
+    r = packlab.compress(sc_column(), bond_strength=math.inf, strain_rate=1e6, max_strain=0.003, samples=50,
+                         snapshot_strains=[0.002], progress=lambda strain, stress: calls.append(strain),
+                         progress_interval=0.0)
+    assert r.youngs_modulus == pytest.approx(m, rel=2e-3)
+    assert r.broken_bonds == 0 and r.fixed_particles == 18
+    c = r.curve
+    assert c["stress"][-1] == pytest.approx(m * c["strain"][-1], rel=2e-3)
+    assert calls and calls[-1] <= 0.003 + 1e-9
+    (snap,) = r.snapshots
+    # Every level of the column is compressed alike: bond strains <= 0 (in-plane ones 0), particle stress
+    # sigma_zz negative (compressive) in the free particles.
+    strain = snap["bond_strain"]
+    assert np.nanmax(strain) <= 1e-3 * abs(np.nanmin(strain))  # in-plane bonds: zero up to the dynamics
+    assert snap["particle_stress"].shape == (len(r.model), 3, 3)
+    assert snap["stress_by_type"][0]["mean"][2] < 0
+
+
+def test_bad_keyword_values_raise_value_errors():
+    with pytest.raises(ValueError, match="sides"):
+        packlab.compress(sc_column(4), sides="closed")
+    with pytest.raises(ValueError, match="strain_rate"):
+        packlab.compress(sc_column(4), strain_rate=-1.0)
+
+
+def test_porosity_fits_recover_m_and_b():
+    eps = np.repeat([0.39, 0.45, 0.49, 0.55, 0.59, 0.63], 3)
+    scatter = np.tile([-0.01, 0.0, 0.01], 6)
+    e = 22.06e9 * (1 - eps) ** 1.92 * (1 + scatter)
+    power = packlab.fit_porosity_law("power", eps, e, fixed_e0=22.06e9)
+    assert power.exponent == pytest.approx(1.92, abs=0.01)
+    expo = packlab.fit_porosity_law("exponential", eps, e, fixed_e0=22.06e9)
+    assert expo.rss > power.rss
+    s = 576.3e6 * np.exp(-3.85 * eps) * (1 + scatter)
+    strength = packlab.fit_porosity_law("exponential", eps, s)
+    assert strength.exponent == pytest.approx(3.85, abs=0.1)
+    assert strength(0.5) == pytest.approx(576.3e6 * math.exp(-3.85 * 0.5), rel=0.02)

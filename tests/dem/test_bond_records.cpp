@@ -1,0 +1,122 @@
+// Engine records of elastic bonds: current axial strain per bond, the failure log (time and
+// position), breakage exactly at sigma_max under a steady pull, removal after the relaxation.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+#include <numbers>
+#include <sstream>
+
+#include "packlab/dem/bond_law.hpp"
+#include "packlab/dem/engine.hpp"
+
+using namespace packlab;
+using namespace packlab::dem;
+
+namespace {
+constexpr double r = 7.5e-9, l0 = 2 * r;
+constexpr double E = 6.53e9, nu = 0.17, sigma_max = 94.3e6;
+constexpr double inf = std::numeric_limits<double>::infinity();
+}  // namespace
+
+TEST(BondRecords, PulledBondFailsAtSigmaMaxAndIsLoggedAtItsMidpoint) {
+  // Particle 0 fixed, particle 1 pulled along x at a constant 1 m/s (a huge density makes the
+  // bond force negligible for its motion). Normal stress E (L - L0) / L0 reaches sigma_max at
+  // strain sigma_max / E, i.e. at t* = L0 sigma_max / (E v); the failure is logged within one
+  // step of t*, at the bond's midpoint; the bond is removed one relaxation time later.
+  Packing p;
+  p.box.length = {20 * r, 10 * r, 10 * r};
+  p.box.periodic = {false, false, false};
+  p.add({4 * r, 5 * r, 5 * r}, r);
+  p.add({4 * r + l0, 5 * r, 5 * r}, r);
+  p.fixed = {1, 0};
+  p.density = {1297.0, 1e12};
+  p.velocity = {Vec3{}, Vec3{1.0, 0, 0}};
+  p.bonds.add(0, 1, {0, 0, 0}, 0, l0);
+  EngineConfig c;
+  c.contact_law = "hertz_mindlin";
+  c.types = {TypeParams{}};
+  c.types[0].youngs_modulus = E;
+  c.types[0].poisson_ratio = nu;
+  c.types[0].damping = 0.0;
+  c.bond_law = "elastic";
+  c.elastic_bond_materials = {ElasticBond::Params{E, nu, sigma_max, inf, 1.0, 1e-9}};
+  c.threads = 1;
+  c.time_step = 1e-12;
+  Engine e(p, c);
+  const double t_fail = l0 * sigma_max / (E * 1.0);
+  e.run(static_cast<long>(0.5 * t_fail / 1e-12));
+  {
+    const std::vector<double> s = e.bond_strains();
+    ASSERT_EQ(s.size(), 1u);
+    const Packing now = e.packing();
+    const double expected = (now.position[1].x - now.position[0].x - l0) / l0;
+    EXPECT_NEAR(s[0], expected, 1e-9 * expected);
+    EXPECT_NEAR(s[0], 0.5 * sigma_max / E, 0.01 * sigma_max / E);
+    EXPECT_TRUE(e.bond_breaks().empty());
+  }
+  e.run(static_cast<long>(0.6 * t_fail / 1e-12));
+  ASSERT_EQ(e.bond_breaks().size(), 1u);
+  const BondBreak& b = e.bond_breaks()[0];
+  EXPECT_EQ(b.bond, 0u);
+  EXPECT_NEAR(b.time, t_fail, 1.5e-12);
+  const double x_mid = 4 * r + 0.5 * (l0 + 1.0 * b.time);
+  EXPECT_NEAR(b.position.x, x_mid, 1e-3 * r);
+  EXPECT_NEAR(b.position.y, 5 * r, 1e-9 * r);
+  EXPECT_TRUE(std::isnan(e.bond_strains()[0]));  // failed bonds have no strain
+  EXPECT_EQ(e.intact_bonds(), 1u);                // still relaxing
+  Diagnostics d = e.step_measured();
+  EXPECT_EQ(d.broken_bonds, 1u);
+  e.run(static_cast<long>(1e-9 / 1e-12) + 2);
+  EXPECT_EQ(e.intact_bonds(), 0u);
+  EXPECT_EQ(e.bond_breaks().size(), 1u);
+}
+
+TEST(BondRecords, BreakLogSurvivesACheckpoint) {
+  Packing p;
+  p.box.length = {20 * r, 10 * r, 10 * r};
+  p.box.periodic = {false, false, false};
+  p.add({4 * r, 5 * r, 5 * r}, r);
+  p.add({4 * r + l0, 5 * r, 5 * r}, r);
+  p.fixed = {1, 0};
+  p.density = {1297.0, 1e12};
+  p.velocity = {Vec3{}, Vec3{1.0, 0, 0}};
+  p.bonds.add(0, 1, {0, 0, 0}, 0, l0);
+  EngineConfig c;
+  c.types = {TypeParams{}};
+  c.bond_law = "elastic";
+  c.elastic_bond_materials = {ElasticBond::Params{E, nu, sigma_max, inf, 1.0, 1e-9}};
+  c.threads = 1;
+  c.time_step = 1e-12;
+  Engine a(p, c);
+  a.run(400);
+  ASSERT_EQ(a.bond_breaks().size(), 1u);
+  std::stringstream state;
+  a.save_state(state);
+  Engine b(p, c);
+  b.load_state(state);
+  ASSERT_EQ(b.bond_breaks().size(), 1u);
+  EXPECT_EQ(b.bond_breaks()[0].time, a.bond_breaks()[0].time);
+  EXPECT_EQ(b.bond_breaks()[0].position.x, a.bond_breaks()[0].position.x);
+}
+
+TEST(BondRecords, NormalCriterionBreaksCompressedBondsOnlyWhenAsked) {
+  // A bond shortened to a normal stress of 1.5 sigma_max: intact by default (MUSEN's default,
+  // eq. 16 for stretched bonds), failed with compressive_breakage; stretched: failed either way.
+  ContactGeometry g{};
+  g.normal = {1, 0, 0};
+  g.radius_i = g.radius_j = r;
+  g.rest_length = l0;
+  g.dt = 1e-12;
+  const double strain = 1.5 * sigma_max / E;
+  for (bool compressive : {false, true})
+    for (double sign : {-1.0, 1.0}) {
+      ElasticBond::Params p{E, nu, sigma_max, inf, 1.0, 1e-9};
+      p.compressive_breakage = compressive;
+      g.overlap = -sign * strain * l0;
+      g.branch_i = g.branch_j = r - 0.5 * g.overlap;
+      ElasticBond::State s;
+      const BondForce f = ElasticBond::evaluate(g, p, s);
+      EXPECT_EQ(f.failed, compressive || sign > 0) << "compressive_breakage " << compressive << " sign " << sign;
+    }
+}
