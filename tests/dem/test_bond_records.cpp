@@ -17,13 +17,9 @@ namespace {
 constexpr double r = 7.5e-9, l0 = 2 * r;
 constexpr double E = 6.53e9, nu = 0.17, sigma_max = 94.3e6;
 constexpr double inf = std::numeric_limits<double>::infinity();
-}  // namespace
 
-TEST(BondRecords, PulledBondFailsAtSigmaMaxAndIsLoggedAtItsMidpoint) {
-  // Particle 0 fixed, particle 1 pulled along x at a constant 1 m/s (a huge density makes the
-  // bond force negligible for its motion). Normal stress E (L - L0) / L0 reaches sigma_max at
-  // strain sigma_max / E, i.e. at t* = L0 sigma_max / (E v); the failure is logged within one
-  // step of t*, at the bond's midpoint; the bond is removed one relaxation time later.
+// Particle 0 fixed, particle 1 moving away along x at 1 m/s, bonded at its rest length.
+Packing pulled_pair() {
   Packing p;
   p.box.length = {20 * r, 10 * r, 10 * r};
   p.box.periodic = {false, false, false};
@@ -33,16 +29,32 @@ TEST(BondRecords, PulledBondFailsAtSigmaMaxAndIsLoggedAtItsMidpoint) {
   p.density = {1297.0, 1e12};
   p.velocity = {Vec3{}, Vec3{1.0, 0, 0}};
   p.bonds.add(0, 1, {0, 0, 0}, 0, l0);
+  return p;
+}
+
+// One elastic bond material (silica), steps of 1 ps, one thread.
+EngineConfig elastic_bond_config() {
   EngineConfig c;
-  c.contact_law = "hertz_mindlin";
   c.types = {TypeParams{}};
-  c.types[0].youngs_modulus = E;
-  c.types[0].poisson_ratio = nu;
-  c.types[0].damping = 0.0;
   c.bond_law = "elastic";
   c.elastic_bond_materials = {ElasticBond::Params{E, nu, sigma_max, inf, 1.0, 1e-9}};
   c.threads = 1;
   c.time_step = 1e-12;
+  return c;
+}
+}  // namespace
+
+TEST(BondRecords, PulledBondFailsAtSigmaMaxAndIsLoggedAtItsMidpoint) {
+  // Particle 0 fixed, particle 1 pulled along x at a constant 1 m/s (a huge density makes the
+  // bond force negligible for its motion). Normal stress E (L - L0) / L0 reaches sigma_max at
+  // strain sigma_max / E, i.e. at t* = L0 sigma_max / (E v); the failure is logged within one
+  // step of t*, at the bond's midpoint; the bond is removed one relaxation time later.
+  const Packing p = pulled_pair();
+  EngineConfig c = elastic_bond_config();
+  c.contact_law = "hertz_mindlin";
+  c.types[0].youngs_modulus = E;
+  c.types[0].poisson_ratio = nu;
+  c.types[0].damping = 0.0;
   Engine e(p, c);
   const double t_fail = l0 * sigma_max / (E * 1.0);
   e.run(static_cast<long>(0.5 * t_fail / 1e-12));
@@ -73,21 +85,8 @@ TEST(BondRecords, PulledBondFailsAtSigmaMaxAndIsLoggedAtItsMidpoint) {
 }
 
 TEST(BondRecords, BreakLogSurvivesACheckpoint) {
-  Packing p;
-  p.box.length = {20 * r, 10 * r, 10 * r};
-  p.box.periodic = {false, false, false};
-  p.add({4 * r, 5 * r, 5 * r}, r);
-  p.add({4 * r + l0, 5 * r, 5 * r}, r);
-  p.fixed = {1, 0};
-  p.density = {1297.0, 1e12};
-  p.velocity = {Vec3{}, Vec3{1.0, 0, 0}};
-  p.bonds.add(0, 1, {0, 0, 0}, 0, l0);
-  EngineConfig c;
-  c.types = {TypeParams{}};
-  c.bond_law = "elastic";
-  c.elastic_bond_materials = {ElasticBond::Params{E, nu, sigma_max, inf, 1.0, 1e-9}};
-  c.threads = 1;
-  c.time_step = 1e-12;
+  const Packing p = pulled_pair();
+  const EngineConfig c = elastic_bond_config();
   Engine a(p, c);
   a.run(400);
   ASSERT_EQ(a.bond_breaks().size(), 1u);
