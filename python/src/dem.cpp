@@ -121,7 +121,7 @@ Material (one for every particle type; `materials` gives one Material per type i
   (Hertz-Mindlin only).
 contact_law: "linear" or "hertz_mindlin" (contact_law_names()).
 stiffness_rule: "particle" (PFC particle stiffnesses in series, contact = k/2) or "contact".
-time_step [s]: 0 = time_step_safety * min sqrt(m/k); time_step_rule: "global" or "contacts"
+time_step [s]: 0 = time_step_safety * min sqrt(m/k); time_step_rule: "global", "contacts" or "stiffness_sum"
   (refreshed from touching pairs, capped at max_time_step [s]).
 skin_ratio: Verlet skin / largest radius. bond_law: "contact"; bond_materials: list of
   BondMaterial (one per bond material), required when the packing has intact bonds.

@@ -76,7 +76,8 @@ void bind_generate_later(py::module_& m) {
       "generate_vem",
       [](long structural, long voids, double phi_s, double radius, std::uint64_t seed, int threads, double max_q,
          int blowup_steps, double void_radius_ratio, double contact_eps, double relax_tolerance, long relax_max_steps,
-         double void_mass_scaling, double stop_strain_energy, double time_step_safety, double skin,
+         double void_mass_scaling, double stop_strain_energy, const std::string& time_step_rule,
+         double time_step_safety, double skin,
          std::optional<dem::TypeParams> structural_material, std::optional<dem::TypeParams> void_material,
          py::object progress, double progress_interval) {
         generate::VemParams p;
@@ -94,6 +95,7 @@ void bind_generate_later(py::module_& m) {
         p.relax_max_steps = relax_max_steps;
         p.void_mass_scaling = void_mass_scaling;
         p.stop_strain_energy = stop_strain_energy;
+        p.time_step_rule = time_step_rule;
         p.time_step_safety = time_step_safety;
         p.skin = skin;
         if (structural_material) p.structural_material = *structural_material;
@@ -154,13 +156,15 @@ void bind_generate_later(py::module_& m) {
       py::arg("radius") = 2.5e-7, py::arg("seed") = 1, py::arg("threads") = 0, py::arg("max_q") = 3.0,
       py::arg("blowup_steps") = 10, py::arg("void_radius_ratio") = 0.005, py::arg("contact_eps") = 0.01,
       py::arg("relax_tolerance") = 1e-2, py::arg("relax_max_steps") = 20000, py::arg("void_mass_scaling") = 1.0,
-      py::arg("stop_strain_energy") = 1e-3, py::arg("time_step_safety") = 0.2, py::arg("skin") = 0.2,
+      py::arg("stop_strain_energy") = 1e-3, py::arg("time_step_rule") = "stiffness_sum",
+      py::arg("time_step_safety") = 0.8, py::arg("skin") = 0.2,
       py::arg("structural_material") = py::none(), py::arg("void_material") = py::none(),
       py::arg("progress") = py::none(), py::arg("progress_interval") = 0.5, R"doc(
 `packlab generate vem`: the void expansion method (docs/vem.md). Keywords as the config keys:
 structural N_S, voids N_V, phi_s, radius r_S [m], seed, threads, max_q, blowup_steps m,
 void_radius_ratio r_V0/r_S, contact_eps, relax_tolerance, relax_max_steps, void_mass_scaling,
-stop_strain_energy, time_step_safety, skin; structural_material / void_material: Material
+stop_strain_energy, time_step_rule ("stiffness_sum" or "contacts"), time_step_safety, skin;
+structural_material / void_material: Material
 (default Table 1: k_n 1e3 / 1e2 N/m, k_s 1e-2 N/m, density 3690 / 369 kg/m^3, damping 0.7).
 progress(cycle, q, cn) (q = cn = -1 between rows). Returns a namespace: packing (structural
 particles, voids removed), curve (dict of arrays: the columns of cn_curve.csv), stop, steps,

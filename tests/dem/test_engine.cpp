@@ -83,6 +83,71 @@ TEST(Engine, EnergyIsConservedWithoutDamping) {
   EXPECT_GT(r.contacts_start, 4 * p.size() / 2);  // jammed: the energy lives in contacts
 }
 
+TEST(Engine, StiffnessSumRuleIsStableAtPfcSafety) {
+  // PFC's rule, dt = safety * min_i sqrt(m_i / sum_c k_c), at PFC's safety 0.8 on the jammed
+  // packing of the test above (about 6 contacts per particle), no damping: leap-frog is stable
+  // for dt < sqrt(2 m_i / sum_c k_c), so the energy error stays bounded (an O((omega dt)^2)
+  // oscillation, not a growth). The per-contact rule at the same safety ignores that a particle
+  // has six springs: its step is sqrt(6) times larger, past the stability limit, and the
+  // vibration blows up.
+  Packing start = dense_random(128, 0.70, 11);
+  EngineConfig config;
+  config.types = {TypeParams{1000.0, 0.0, 0.0, 1000.0, 0.7}};
+  config.stiffness_rule = StiffnessRule::contact;
+  config.threads = 1;
+  Engine relaxer(start, config);
+  RelaxOptions ro;
+  ro.tolerance = 1e-9;
+  ro.max_steps = 20000;
+  relax(relaxer, ro);
+  const double static_energy = relaxer.step_measured().strain_energy;
+  Packing p = relaxer.packing();
+  Random rng(5);
+  for (auto& v : p.velocity) v = 5e-4 * rng.unit_vector();
+  config.types[0].damping = 0.0;
+  config.time_step_safety = 0.8;
+  config.time_step_rule = TimeStepRule::stiffness_sum;
+  const EnergyRun sum = vibrate(p, config, 20'000, static_energy);
+  // Measured: worst 0.024 of the vibrational energy (1.0e-3 at safety 0.05 above: O(dt^2)).
+  EXPECT_LT(sum.worst_error, 0.1) << "worst " << sum.worst_error << " drift " << sum.final_error;
+  EXPECT_GT(sum.contacts_end, 4 * p.size() / 2);  // still jammed
+  config.time_step_rule = TimeStepRule::contacts;
+  const EnergyRun per_contact = vibrate(p, config, 20'000, static_energy);
+  EXPECT_GT(per_contact.worst_error, 100.0) << "worst " << per_contact.worst_error;  // measured 5.5e10
+}
+
+TEST(Engine, StiffnessSumRuleCountsEveryContactOfAParticle) {
+  // Three equal particles in a row, each pair overlapping: the middle one has two springs,
+  // dt = safety sqrt(m / 2k); the per-contact rule gives safety sqrt(m / k).
+  Packing p;
+  p.box.length = {10, 10, 10};
+  p.box.periodic = {false, false, false};
+  p.add({4.0, 5, 5}, 0.5, 0);
+  p.add({4.99, 5, 5}, 0.5, 0);
+  p.add({5.98, 5, 5}, 0.5, 0);
+  EngineConfig config;
+  config.types = {TypeParams{1000.0, 10.0, 0.0, 1000.0, 0.7}};
+  config.stiffness_rule = StiffnessRule::contact;
+  config.time_step_safety = 0.8;
+  config.threads = 1;
+  config.time_step_rule = TimeStepRule::stiffness_sum;
+  Engine sum(p, config);
+  sum.run(1);
+  const double m = 1000.0 * 4.0 / 3.0 * std::numbers::pi * 0.125;
+  EXPECT_NEAR(sum.time_step(), 0.8 * std::sqrt(m / 2000.0), 1e-12);
+  config.time_step_rule = TimeStepRule::contacts;
+  Engine per_contact(p, config);
+  per_contact.run(1);
+  EXPECT_NEAR(per_contact.time_step(), 0.8 * std::sqrt(m / 1000.0), 1e-12);
+  // Nothing touching: both fall back to the heaviest particle's step.
+  p.position[1] = {2.0, 2, 2};
+  p.position[2] = {8.0, 8, 8};
+  config.time_step_rule = TimeStepRule::stiffness_sum;
+  Engine apart(p, config);
+  apart.run(1);
+  EXPECT_NEAR(apart.time_step(), 0.8 * std::sqrt(m / 1000.0), 1e-12);
+}
+
 TEST(Engine, EnergyIsConservedWithShearSprings) {
   // Compressed FCC (2 % overlaps, every contact persists), small translational and
   // rotational vibrations, shear springs that never slide: translation, rotation and the

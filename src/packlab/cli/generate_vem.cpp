@@ -69,7 +69,10 @@ io::ConfigSchema vem_schema(generate::VemParams& p, RunSettings& s) {
       .number("contact_eps", p.contact_eps, "Coordination contact tolerance eps: contact at (1 + eps) 2 r_S")
       .number("void_mass_scaling", p.void_mass_scaling,
               "Void mass scaling c (0 = none; docs/vem.md): quasi-static, results shown not to depend on it")
-      .number("time_step_safety", p.time_step_safety, "Time step as a fraction of sqrt(m/k)")
+      .text("time_step_rule", p.time_step_rule,
+            "'stiffness_sum' (PFC: safety * min sqrt(m_i / sum of i's contact stiffnesses)) or 'contacts' "
+            "(safety * min over touching pairs of sqrt(m_lighter / k))")
+      .number("time_step_safety", p.time_step_safety, "Time step as a fraction of sqrt(m/k) (PFC's default 0.8)")
       .number("skin", p.skin, "Verlet skin / r_S")
       .number_to_all("damping", {&p.structural_material.damping, &p.void_material.damping},
                      "Local damping of both materials (overridden by the material tables)")
@@ -160,7 +163,7 @@ nlohmann::json params_json(const generate::VemParams& p) {
           {"void_material", material(p.void_material)},
           {"stiffness_rule", "particle"},
           {"contact_law", "linear"},
-          {"time_step_rule", "contacts"},
+          {"time_step_rule", p.time_step_rule},
           {"contact_eps", p.contact_eps},
           {"relax", {{"tolerance", p.relax_tolerance},
                      {"overlap", p.relax_overlap},

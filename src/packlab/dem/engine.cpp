@@ -22,10 +22,18 @@ std::vector<std::string> contact_law_names() { return {LinearContact::name, Hert
 TimeStepRule time_step_rule_from_name(const std::string& name) {
   if (name == "global") return TimeStepRule::global;
   if (name == "contacts") return TimeStepRule::contacts;
-  fail_input(fmt::format("time_step_rule = {}: must be 'global' or 'contacts'", name));
+  if (name == "stiffness_sum") return TimeStepRule::stiffness_sum;
+  fail_input(fmt::format("time_step_rule = {}: must be 'global', 'contacts' or 'stiffness_sum'", name));
 }
 
-std::string time_step_rule_name(TimeStepRule rule) { return rule == TimeStepRule::global ? "global" : "contacts"; }
+std::string time_step_rule_name(TimeStepRule rule) {
+  switch (rule) {
+    case TimeStepRule::global: return "global";
+    case TimeStepRule::contacts: return "contacts";
+    case TimeStepRule::stiffness_sum: return "stiffness_sum";
+  }
+  return "global";
+}
 
 namespace {
 
@@ -181,7 +189,7 @@ Engine::Engine(const Packing& packing, const EngineConfig& config) : packing_(pa
   masses_changed();
   if (config_.time_step > 0.0)
     dt_ = config_.time_step;
-  else if (config_.time_step_rule == TimeStepRule::contacts)
+  else if (config_.time_step_rule != TimeStepRule::global)
     dt_ = time_step_cap_;
   else
     dt_ = critical_time_step();
@@ -408,7 +416,8 @@ std::size_t Engine::add_wall(const Wall& wall) {
 }
 
 template <class Law, bool Measure>
-void Engine::wall_forces(ContactModel<Law>& model, int thread, Vec3* force, Vec3* torque, Totals& local) {
+void Engine::wall_forces(ContactModel<Law>& model, int thread, Vec3* force, Vec3* torque, double* stiffness,
+                         Totals& local) {
   const std::size_t n = particles_.size(), walls = walls_.size();
   const std::size_t begin = n * thread / threads_, end = n * (thread + 1) / threads_;
   auto& wall_force = thread_wall_force_[thread];
@@ -431,6 +440,7 @@ void Engine::wall_forces(ContactModel<Law>& model, int thread, Vec3* force, Vec3
       torque[k] += f.torque_i;
       wall_force[m] += f.force_on_j;
       local.max_stiffness_over_mass = std::max(local.max_stiffness_over_mass, f.stiffness * P.inverse_mass[k]);
+      if (stiffness) stiffness[k] += f.stiffness;
       if constexpr (Measure) {
         ++local.contacts;
         local.contact_force_sum += norm(f.force_on_j);
@@ -547,7 +557,7 @@ std::size_t Engine::intact_bonds() const {
 }
 
 template <class BondLaw, bool Measure>
-void Engine::bond_forces(int thread, Vec3* force, Vec3* torque, Totals& local) {
+void Engine::bond_forces(int thread, Vec3* force, Vec3* torque, double* stiffness, Totals& local) {
   auto& histories = std::get<std::vector<typename BondLaw::State>>(bonds_.history);
   const std::size_t nb = bonds_.i.size();
   const std::size_t begin = nb * thread / threads_, end = nb * (thread + 1) / threads_;
@@ -578,10 +588,12 @@ void Engine::bond_forces(int thread, Vec3* force, Vec3* torque, Totals& local) {
     force[j] += f.force_on_j;
     torque[i] += f.torque_i;
     torque[j] += f.torque_j;
-    local.max_stiffness_over_mass =
-        std::max(local.max_stiffness_over_mass,
-                 BondLaw::stiffness(params, P.radius[i], P.radius[j], bonds_.rest_length[b]) *
-                     std::max(P.inverse_mass[i], P.inverse_mass[j]));
+    const double k = BondLaw::stiffness(params, P.radius[i], P.radius[j], bonds_.rest_length[b]);
+    local.max_stiffness_over_mass = std::max(local.max_stiffness_over_mass, k * std::max(P.inverse_mass[i], P.inverse_mass[j]));
+    if (stiffness) {
+      stiffness[i] += k;
+      stiffness[j] += k;
+    }
     if constexpr (Measure) {
       local.contact_force_sum += norm(f.force_on_j);
       ++local.contacts;
@@ -590,7 +602,7 @@ void Engine::bond_forces(int thread, Vec3* force, Vec3* torque, Totals& local) {
   }
 }
 
-template <class Law, bool Measure>
+template <class Law, bool Measure, bool SumRule>
 void Engine::pair_forces(ContactModel<Law>& model, Totals& totals) {
   const int n = static_cast<int>(particles_.size());
   const int T = threads_;
@@ -610,6 +622,8 @@ void Engine::pair_forces(ContactModel<Law>& model, Totals& totals) {
   auto* __restrict history = model.history.data();
   const std::uint8_t* __restrict bonded = pair_bonded_.data();
   const bool any_bonded = !bonds_.i.empty();
+  constexpr bool sum_rule = SumRule;
+  if constexpr (sum_rule) thread_stiffness_.resize(static_cast<std::size_t>(T));
   std::array<Vec3, 27> offsets;  // local copy: the force stores below cannot alias it
   for (int c = 0; c < 27; ++c) offsets[c] = neighbors_.image_offset(c);
 
@@ -629,6 +643,11 @@ void Engine::pair_forces(ContactModel<Law>& model, Totals& totals) {
     }
     std::fill(force, force + n, Vec3{});
     std::fill(torque, torque + n, Vec3{});
+    double* __restrict stiffness = nullptr;
+    if constexpr (sum_rule) {
+      thread_stiffness_[t].assign(n, 0.0);
+      stiffness = thread_stiffness_[t].data();
+    }
     Totals local;
     // Contiguous ranges of particles holding about equal numbers of pairs; each particle's
     // pairs belong to one thread, so its own force is summed in registers.
@@ -645,6 +664,7 @@ void Engine::pair_forces(ContactModel<Law>& model, Totals& totals) {
       const double inverse_mass_i = inverse_mass[i];
       const auto* params_i = params + type[i] * type_count;
       Vec3 force_i{}, torque_i{};
+      double stiffness_i = 0.0;
       for (int p = first[i]; p < first[i + 1]; ++p) {
         const int j = partner[p];
         const Vec3 d = x[j] + offsets[image[p]] - xi;
@@ -681,6 +701,10 @@ void Engine::pair_forces(ContactModel<Law>& model, Totals& totals) {
         force[j] += f.force_on_j;
         torque_i += f.torque_i;
         torque[j] += f.torque_j;
+        if constexpr (sum_rule) {
+          stiffness_i += f.stiffness;
+          stiffness[j] += f.stiffness;
+        }
         if constexpr (Measure) {
           ++local.contacts;
           local.contact_force_sum += norm(f.force_on_j);
@@ -690,14 +714,15 @@ void Engine::pair_forces(ContactModel<Law>& model, Totals& totals) {
       }
       force[i] += force_i;
       torque[i] += torque_i;
+      if constexpr (sum_rule) stiffness[i] += stiffness_i;
     }
     if (any_bonded) {
       if (std::holds_alternative<std::vector<ContactBond::State>>(bonds_.history))
-        bond_forces<ContactBond, Measure>(t, force, torque, local);
+        bond_forces<ContactBond, Measure>(t, force, torque, stiffness, local);
       else
-        bond_forces<ElasticBond, Measure>(t, force, torque, local);
+        bond_forces<ElasticBond, Measure>(t, force, torque, stiffness, local);
     }
-    if (!walls_.empty()) wall_forces<Law, Measure>(model, t, force, torque, local);
+    if (!walls_.empty()) wall_forces<Law, Measure>(model, t, force, torque, stiffness, local);
     thread_totals_[t] = local;
 #pragma omp barrier
     if (T > 1) {
@@ -712,6 +737,18 @@ void Engine::pair_forces(ContactModel<Law>& model, Totals& totals) {
         particles_.force[k] = f;
         particles_.torque[k] = m;
       }
+    }
+    if constexpr (sum_rule) {
+      // The stiffest particle: sum of its contact stiffnesses over its mass (fixed particles
+      // have zero inverse mass and drop out). Max is order-independent: deterministic.
+      double largest = 0.0;
+#pragma omp for schedule(static)
+      for (int k = 0; k < n; ++k) {
+        double sum = 0.0;
+        for (int s = 0; s < T; ++s) sum += thread_stiffness_[s][k];
+        largest = std::max(largest, sum * inverse_mass[k]);
+      }
+      thread_totals_[t].max_stiffness_over_mass = largest;
     }
   }
   for (int t = 0; t < T; ++t) {
@@ -779,8 +816,16 @@ template <bool Measure>
 Engine::Totals Engine::step_impl() {
   if (neighbors_.needs_rebuild(particles_.position, particles_.radius)) refresh_neighbors();
   Totals totals;
-  std::visit([&](auto& model) { pair_forces<std::decay_t<decltype(model.law)>, Measure>(model, totals); }, model_);
-  if (config_.time_step <= 0.0 && config_.time_step_rule == TimeStepRule::contacts) {
+  std::visit(
+      [&](auto& model) {
+        using Law = std::decay_t<decltype(model.law)>;
+        if (config_.time_step <= 0.0 && config_.time_step_rule == TimeStepRule::stiffness_sum)
+          pair_forces<Law, Measure, true>(model, totals);
+        else
+          pair_forces<Law, Measure, false>(model, totals);
+      },
+      model_);
+  if (config_.time_step <= 0.0 && config_.time_step_rule != TimeStepRule::global) {
     dt_ = totals.max_stiffness_over_mass > 0.0
               ? std::min(time_step_cap_, config_.time_step_safety / std::sqrt(totals.max_stiffness_over_mass))
               : time_step_cap_;

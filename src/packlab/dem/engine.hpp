@@ -35,7 +35,14 @@ namespace packlab::dem {
 //             pairs of sqrt(m / k) with m the lighter of the two (PFC's practice), capped at
 //             max_time_step. Needed when tiny light particles (void particles) would make the
 //             global step unusably small while they touch nothing (DESIGN.md numerical notes).
-enum class TimeStepRule { global, contacts };
+//   stiffness_sum: refreshed every step like `contacts`, but per particle from the sum of its
+//             contacts' stiffnesses: safety * min over touching particles of
+//             sqrt(m_i / sum_c k_c) (PFC's translational rule; PFC's default safety is 0.8).
+//             The step follows the actual loading: a particle with one contact may take a
+//             step 1/sqrt(z) of what it takes with z; leap-frog stays stable while
+//             dt < sqrt(2 m_i / sum_c k_c) for every particle (Gershgorin bound on the
+//             linearized translational dynamics), whatever the coordination.
+enum class TimeStepRule { global, contacts, stiffness_sum };
 
 TimeStepRule time_step_rule_from_name(const std::string& name);
 std::string time_step_rule_name(TimeStepRule rule);
@@ -202,7 +209,9 @@ class Engine {
     double kinetic_energy = 0.0;
     double unbalanced_force_sum = 0.0;
     std::size_t free_particles = 0;
-    double max_stiffness_over_mass = 0.0;  // over touching pairs, for the contacts rule
+    // contacts rule: max over touching pairs of k / m_lighter; stiffness_sum rule: max over
+    // particles of sum_c k_c / m_i.
+    double max_stiffness_over_mass = 0.0;
     std::size_t bond_breaks = 0;           // bonds that failed this step
   };
   // Bonds in the engine's particle order; `image` is relative to the input frame (see wraps_).
@@ -217,14 +226,16 @@ class Engine {
   };
   template <bool Measure>
   Totals step_impl();
-  template <class Law, bool Measure>
+  template <class Law, bool Measure, bool SumRule>
   void pair_forces(ContactModel<Law>& model, Totals& totals);
   template <bool Measure>
   void integrate(Totals& totals);
   void refresh_neighbors();
   void mark_bonded_pairs();
+  // `stiffness` (nullptr unless the stiffness_sum rule is on) accumulates each particle's
+  // contact stiffnesses.
   template <class BondLaw, bool Measure>
-  void bond_forces(int thread, Vec3* force, Vec3* torque, Totals& local);
+  void bond_forces(int thread, Vec3* force, Vec3* torque, double* stiffness, Totals& local);
   template <class BondLaw>
   const std::vector<typename BondLaw::Params>& bond_materials() const;
   template <class BondLaw>
@@ -233,7 +244,8 @@ class Engine {
   template <class F>
   void with_bond_law(F&& f) const;
   template <class Law, bool Measure>
-  void wall_forces(ContactModel<Law>& model, int thread, Vec3* force, Vec3* torque, Totals& local);
+  void wall_forces(ContactModel<Law>& model, int thread, Vec3* force, Vec3* torque, double* stiffness,
+                   Totals& local);
   std::array<int, 3> bond_image_now(std::size_t b) const;
   void update_mass(std::size_t k);
   double heaviest_particle_time_step() const;
@@ -263,6 +275,7 @@ class Engine {
   NeighborList neighbors_;
   ContactModels model_;
   std::vector<std::vector<Vec3>> thread_force_, thread_torque_;
+  std::vector<std::vector<double>> thread_stiffness_;  // stiffness_sum rule: per thread, per particle
   std::vector<Totals> thread_totals_;
   int threads_ = 1;
   double dt_ = 0.0;

@@ -16,7 +16,7 @@ namespace packlab::generate {
 
 namespace {
 
-constexpr std::uint64_t vem_checkpoint_magic = 0x3230504B434D4556ULL;  // "VEMCKP02"
+constexpr std::uint64_t vem_checkpoint_magic = 0x3330504B434D4556ULL;  // "VEMCKP03"
 constexpr int structural_type = particle_type::structural;
 constexpr int void_type = particle_type::void_particle;
 
@@ -71,6 +71,7 @@ void write_params(std::ostream& out, const VemParams& p) {
   binary::write(out, p.void_mass_scaling);
   binary::write(out, p.stop_strain_energy);
   binary::write(out, p.max_q);
+  binary::write(out, static_cast<std::int32_t>(dem::time_step_rule_from_name(p.time_step_rule)));
   binary::write(out, p.time_step_safety);
   binary::write(out, p.skin);
   binary::write(out, p.threads);
@@ -95,6 +96,11 @@ VemParams read_params(std::istream& in) {
   binary::read(in, p.void_mass_scaling, "void_mass_scaling");
   binary::read(in, p.stop_strain_energy, "stop strain_energy");
   binary::read(in, p.max_q, "max_q");
+  std::int32_t rule = 0;
+  binary::read(in, rule, "time_step_rule");
+  if (rule < 0 || rule > static_cast<std::int32_t>(dem::TimeStepRule::stiffness_sum))
+    fail_input("checkpoint is damaged: unknown time step rule");
+  p.time_step_rule = dem::time_step_rule_name(static_cast<dem::TimeStepRule>(rule));
   binary::read(in, p.time_step_safety, "time_step_safety");
   binary::read(in, p.skin, "skin");
   binary::read(in, p.threads, "threads");
@@ -155,6 +161,10 @@ void VemParams::validate() const {
           "> 0 (strain energy / (N_S k_n,S r_S^2))");
   require(max_q >= void_radius_ratio && std::isfinite(max_q), "stop.max_q", max_q,
           ">= void_radius_ratio (largest r_V / r_S recorded)");
+  if (time_step_rule != "contacts" && time_step_rule != "stiffness_sum")
+    fail_input(fmt::format("time_step_rule = {}: must be 'stiffness_sum' (PFC's rule, default) or 'contacts' "
+                           "(a global step would be set by the tiny voids)",
+                           time_step_rule));
   require(time_step_safety > 0.0 && time_step_safety <= 1.0, "time_step_safety", time_step_safety, "in (0, 1]");
   require(skin > 0.0 && skin <= 2.0, "skin", skin, "in (0, 2] (Verlet skin / r_S)");
   require(threads >= 0, "threads", threads, ">= 0 (0 = all cores)");
@@ -208,7 +218,7 @@ dem::EngineConfig Vem::engine_config() const {
   c.contact_law = "linear";
   c.types = {params_.structural_material, params_.void_material};
   c.stiffness_rule = dem::StiffnessRule::particle;
-  c.time_step_rule = dem::TimeStepRule::contacts;
+  c.time_step_rule = dem::time_step_rule_from_name(params_.time_step_rule);
   c.time_step_safety = params_.time_step_safety;
   c.skin_ratio = params_.skin / std::max(1.0, params_.void_radius_ratio);
   c.threads = params_.threads;

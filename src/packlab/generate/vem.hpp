@@ -80,7 +80,10 @@ struct VemParams {
   double void_mass_scaling = 1.0;    // c (see above); 0 = no scaling [-]
   double stop_strain_energy = 1e-3;  // stage III: E_strain / (N_S k_n,S r_S^2) [-]
   double max_q = 3.0;                // last q recorded at most [-]
-  double time_step_safety = 0.2;     // fraction of sqrt(m/k) [-]
+  // Time step: PFC's rule (the paper's code) by default, safety * min_i sqrt(m_i / sum of the
+  // contact stiffnesses of i) refreshed every step; docs/vem.md shows how the step changes q_i.
+  std::string time_step_rule = "stiffness_sum";  // dem::TimeStepRule name except "global"
+  double time_step_safety = 0.8;     // fraction of sqrt(m/k) [-]
   double skin = 0.2;                 // Verlet skin / r_S [-]
   int threads = 0;                   // OpenMP threads, 0 = all; results are bitwise reproducible per count
   std::uint64_t seed = 1;
