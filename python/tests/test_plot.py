@@ -16,3 +16,21 @@ def test_relax_figure_from_python_history(tmp_path):
     fig = packlab.plot.relax.figure(log)
     packlab.plot.save(fig, tmp_path / "relax.png")
     assert (tmp_path / "relax.png").stat().st_size > 1000
+
+
+def test_vem_study_figures_from_tables(tmp_path):
+    # The tables examples/vem/study_tables.py writes, with two tiny synthetic runs.
+    import packlab.plot.vem_study as vem_study
+
+    (tmp_path / "study.csv").write_text(
+        "# synthetic\n"
+        "name,structural,voids,n,phi_s,kn_ratio,q_i,q_i_unc,cn_i,slope,slope_unc,phi_total_i,q_n13\n"
+        "n050_seed1,1000,500,0.5,0.4,0.1,1.0,0.01,3.0,50,2,0.6,0.79\n"
+        "stiffness_kns1e3_knv1e-3,1000,500,0.5,0.4,1e-6,0.9,0.02,2.1,20,3,0.54,0.71\n")
+    (tmp_path / "curves.csv").write_text(
+        "name,q,cn,phi_total\n" + "".join(f"n050_seed1,{q / 10},{q / 5},{0.4 + q / 100}\n" for q in range(12)))
+    study = packlab.plot.read_csv(tmp_path / "study.csv")
+    curves = packlab.plot.read_csv(tmp_path / "curves.csv")
+    for name, fig in [("studies", vem_study.studies(study, curves)), ("stiffness", vem_study.stiffness(study))]:
+        packlab.plot.save(fig, tmp_path / f"{name}.png")
+        assert (tmp_path / f"{name}.png").stat().st_size > 1000

@@ -1,0 +1,93 @@
+#!/usr/bin/env python3
+"""Collects the runs of examples/vem/study.sh into the tables docs/vem.md and `make docs` use:
+
+  DATA/vem_study.csv    one row per run: parameters, inflection point, beta, cost
+  DATA/vem_curves.csv   every run's CN(q) curve (name, q, cn, phi_total), 6 digits
+  DATA/vem_fig1_cn_curve.csv   the Fig. 1 run's cn_curve.csv as written (if it ran)
+
+usage: study_tables.py OUT [DATA]   (DATA defaults to docs/data of this checkout)"""
+
+import csv
+import json
+import math
+import os
+import shutil
+import sys
+
+
+def main(argv):
+    out = argv[1] if len(argv) > 1 else "vem-study"
+    here = os.path.dirname(os.path.abspath(__file__))
+    data = argv[2] if len(argv) > 2 else os.path.join(here, "..", "..", "docs", "data")
+    os.makedirs(data, exist_ok=True)
+    runs = sorted(d for d in os.listdir(out) if os.path.isfile(os.path.join(out, d, "report.json")))
+    study_rows, curve_rows = [], []
+    for name in runs:
+        with open(os.path.join(out, name, "report.json")) as f:
+            r = json.load(f)
+        p = r["parameters"]
+        i = r["inflection"]
+        # Quoted uncertainty: fit error and window sensitivity together (docs/vem.md).
+        q_unc = math.hypot(i.get("q_err", 0.0), i.get("q_window", 0.0))
+        slope_unc = math.hypot(i.get("slope_err", 0.0), i.get("slope_window", 0.0))
+        n = r["voids"] / r["structural"]
+        kn_ratio = p["void_material"]["normal_stiffness_N_per_m"] / p["structural_material"]["normal_stiffness_N_per_m"]
+        study_rows.append({
+            "name": name, "structural": r["structural"], "voids": r["voids"], "n": f"{n:.6g}",
+            "phi_s": f"{r['phi_s']:.6g}", "kn_ratio": f"{kn_ratio:.6g}",
+            "kn_structural": f"{p['structural_material']['normal_stiffness_N_per_m']:.6g}",
+            "void_mass_scaling": f"{p['void_mass_scaling']:.6g}",
+            "time_step_rule": p.get("time_step_rule", "contacts"),
+            "time_step_safety": f"{p['time_step_safety']:.6g}", "seed": p["seed"],
+            "q_i": f"{i['q']:.6g}", "q_i_unc": f"{q_unc:.3g}", "cn_i": f"{i['cn']:.6g}",
+            "slope": f"{i['slope']:.6g}", "slope_unc": f"{slope_unc:.3g}",
+            "phi_total_i": f"{i['phi_total']:.6g}", "q_n13": f"{i['q'] * n ** (1 / 3):.6g}",
+            "slope_n13": f"{i['slope'] * n ** (1 / 3):.6g}", "beta": f"{r['beta']:.6g}",
+            "beta_r2": f"{r['beta_r2']:.6g}", "cycles": r["cycles"], "steps": r["steps"],
+            "seconds": f"{r['seconds']:.4g}", "threads": r["threads"], "stop": r["stop_reason"],
+        })
+        with open(os.path.join(out, name, "cn_curve.csv")) as f:
+            lines = [line for line in f if not line.startswith("#")]
+        q, cn = [], []
+        for row in csv.DictReader(lines):
+            q.append(float(row["q"]))
+            cn.append(float(row["cn"]))
+            curve_rows.append({"name": name, "q": f"{q[-1]:.6g}", "cn": f"{cn[-1]:.6g}",
+                               "phi_total": f"{float(row['phi_total']):.6g}"})
+        # The paper writes the slope as a difference quotient dCN/dq|_i; on a curve sampled
+        # every 0.2 in q (every 40th row) the largest one is (docs/vem.md, "slope").
+        study_rows[-1]["slope_dq02_n13"] = f"{largest_difference_quotient(q, cn, 0.2) * n ** (1 / 3):.4g}"
+    write(os.path.join(data, "vem_study.csv"), study_rows,
+          "examples/vem/study.sh runs (examples/vem/study_tables.py); q_i_unc, slope_unc = "
+          "sqrt(fit error^2 + window change^2); kn_ratio = k_n,V / k_n,S; seconds = wall time")
+    write(os.path.join(data, "vem_curves.csv"), curve_rows,
+          "CN(q) curves of examples/vem/study.sh (examples/vem/study_tables.py)")
+    fig1 = os.path.join(out, "fig1", "cn_curve.csv")
+    if os.path.isfile(fig1):
+        shutil.copyfile(fig1, os.path.join(data, "vem_fig1_cn_curve.csv"))
+        shutil.copyfile(os.path.join(out, "fig1", "report.json"), os.path.join(data, "vem_fig1_report.json"))
+    print(f"{len(study_rows)} runs -> {data}/vem_study.csv, vem_curves.csv ({len(curve_rows)} rows)")
+    return 0
+
+
+def largest_difference_quotient(q, cn, step):
+    """Largest (cn[k+m] - cn[k]) / (q[k+m] - q[k]) over the rows m apart, m = step / (row spacing)."""
+    if len(q) < 3:
+        return float("nan")
+    m = max(1, round(step / (q[1] - q[0])))
+    return max((cn[k + m] - cn[k]) / (q[k + m] - q[k]) for k in range(len(q) - m))
+
+
+def write(path, rows, comment):
+    tmp = path + ".tmp"
+    with open(tmp, "w", newline="") as f:
+        f.write(f"# {comment}\n")
+        if rows:
+            w = csv.DictWriter(f, fieldnames=list(rows[0]), lineterminator="\n")
+            w.writeheader()
+            w.writerows(rows)
+    os.replace(tmp, path)
+
+
+if __name__ == "__main__":
+    sys.exit(main(sys.argv))
