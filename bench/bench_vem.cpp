@@ -1,6 +1,6 @@
 // End-to-end benchmark of the void expansion method (vem-void-expansion-method Fig. 1 case by
 // default: N_S = 8000, N_V = 2000, Phi_S = 0.4, Table 1 parameters, stop at stage III).
-// usage: bench_vem [THREADS] [N_S] [N_V] [PHI_S] [MAX_CYCLES]
+// usage: bench_vem [THREADS] [N_S] [N_V] [PHI_S] [MAX_CYCLES] [SKIN]
 //   MAX_CYCLES > 0 stops after that many void increments (for a rate measurement).
 // Prints per phase: wall time, DEM steps, particle-steps/s, steps and seconds per cycle.
 #include <fmt/format.h>
@@ -19,6 +19,7 @@ int main(int argc, char** argv) {
   if (argc > 3) p.voids = std::atol(argv[3]);
   if (argc > 4) p.phi_s = std::atof(argv[4]);
   const long max_cycles = argc > 5 ? std::atol(argv[5]) : 0;
+  if (argc > 6) p.skin = std::atof(argv[6]);  // Verlet skin / r_S (results do not depend on it)
   const double particles = static_cast<double>(p.structural + p.voids);
 
   using Clock = std::chrono::steady_clock;
@@ -28,7 +29,8 @@ int main(int argc, char** argv) {
   const auto t1 = Clock::now();
   const long blowup_steps = vem.total_steps();
   const double blowup_s = std::chrono::duration<double>(t1 - t0).count();
-  fmt::print("bench_vem N_S={} N_V={} phi_s={} threads={}\n", p.structural, p.voids, p.phi_s, p.threads);
+  fmt::print("bench_vem N_S={} N_V={} phi_s={} threads={} skin={} time_step_rule={} safety={}\n", p.structural,
+             p.voids, p.phi_s, p.threads, p.skin, p.time_step_rule, p.time_step_safety);
   const long blowup_builds = vem.engine().neighbor_builds();
   fmt::print("blow-up: {} steps in {:.2f} s, {:.4g} particle-steps/s, {} neighbour builds, mean dt {:.3g} s\n",
              blowup_steps, blowup_s, particles * static_cast<double>(blowup_steps) / blowup_s, blowup_builds,

@@ -97,6 +97,13 @@ void NeighborList::build(const Box& box, std::vector<Vec3>& position, const std:
     std::vector<int> fill(cell_start_.begin(), cell_start_.end() - 1);
     for (int i = 0; i < n; ++i) cell_particles_[fill[particle_cell_[i]]++] = i;
   }
+  // Positions and radii in cell order: the stencil scan below then reads memory in sequence.
+  cell_position_.resize(n);
+  cell_radius_.resize(n);
+  for (int k = 0; k < n; ++k) {
+    cell_position_[k] = position[cell_particles_[k]];
+    cell_radius_[k] = radius[cell_particles_[k]];
+  }
 
   // Keep the old list to map per-pair history onto the new one.
   const std::vector<int> old_first = std::move(first_);
@@ -120,13 +127,38 @@ void NeighborList::build(const Box& box, std::vector<Vec3>& position, const std:
     // same list as a serial build.
     const int begin = static_cast<int>(static_cast<long>(n) * t / threads);
     const int end = static_cast<int>(static_cast<long>(n) * (t + 1) / threads);
+    // Plain local pointers: inside the parallel region members and captured vectors would be
+    // reloaded through `this` after every push_back (possible aliasing), several loads per
+    // candidate.
+    const int* __restrict slot_particle = cell_particles_.data();
+    const Vec3* __restrict slot_position = cell_position_.data();
+    const double* __restrict slot_radius = cell_radius_.data();
+    const int* __restrict slot_start = cell_start_.data();
+    const int* __restrict cell_of = particle_cell_.data();
+    const std::array<Vec3, 27> offsets = offsets_;
+    const double skin = skin_;
     for (int i = begin; i < end; ++i) {
       const Vec3 pi = position[i];
       const double ri = radius[i];
-      const int ci = particle_cell_[i];
+      const double ri_skin = ri + skin;
+      const int ci = cell_of[i];
       const int cx = ci % grid.count[0], cy = (ci / grid.count[0]) % grid.count[1],
                 cz = ci / (grid.count[0] * grid.count[1]);
       const std::size_t before = tp.size();
+      // Lists the particles of cell-ordered range [begin, end) seen through image `code`.
+      const auto scan = [&](int first_slot, int end_slot, int code) {
+        const Vec3 shifted = pi - offsets[code];
+        for (int k = first_slot; k < end_slot; ++k) {
+          const int j = slot_particle[k];
+          const Vec3 d = slot_position[k] - shifted;
+          const double cut = ri_skin + slot_radius[k];
+          // One branch: in range, and each pair once (j > i, or a self image counted once).
+          if ((norm2(d) < cut * cut) & ((j > i) | ((j == i) & (code > unshifted_image)))) {
+            tp.push_back(j);
+            ti.push_back(static_cast<std::uint8_t>(code));
+          }
+        }
+      };
       for (int dz = -1; dz <= 1; ++dz) {
         int nz = cz + dz, sz = 0;
         if (nz < 0 || nz >= grid.count[2]) {
@@ -141,6 +173,15 @@ void NeighborList::build(const Box& box, std::vector<Vec3>& position, const std:
             sy = ny < 0 ? -1 : 1;
             ny -= sy * grid.count[1];
           }
+          // Cells are numbered x fastest, so the three cells cx-1..cx+1 of a row are one
+          // contiguous range of the cell-ordered arrays: one scan instead of three (most of a
+          // build's time goes into visiting nearly empty cells). Rows that wrap in x are
+          // visited cell by cell, each with its own image.
+          const int row = grid.count[0] * (ny + grid.count[1] * nz);
+          if (cx >= 1 && cx + 1 < grid.count[0]) {
+            scan(slot_start[row + cx - 1], slot_start[row + cx + 2], image_code(0, sy, sz));
+            continue;
+          }
           for (int dx = -1; dx <= 1; ++dx) {
             int nx = cx + dx, sx = 0;
             if (nx < 0 || nx >= grid.count[0]) {
@@ -150,19 +191,7 @@ void NeighborList::build(const Box& box, std::vector<Vec3>& position, const std:
             }
             // With fewer than three cells on an axis the same cell is visited with
             // different shifts: each visit is a distinct periodic image.
-            const int code = image_code(sx, sy, sz);
-            const Vec3 offset = offsets_[code];
-            const int cell = nx + grid.count[0] * (ny + grid.count[1] * nz);
-            for (int k = cell_start_[cell]; k < cell_start_[cell + 1]; ++k) {
-              const int j = cell_particles_[k];
-              if (j < i || (j == i && code <= unshifted_image)) continue;
-              const Vec3 d = position[j] + offset - pi;
-              const double cut = ri + radius[j] + skin_;
-              if (norm2(d) < cut * cut) {
-                tp.push_back(j);
-                ti.push_back(static_cast<std::uint8_t>(code));
-              }
-            }
+            scan(slot_start[row + nx], slot_start[row + nx + 1], image_code(sx, sy, sz));
           }
         }
       }

@@ -72,6 +72,8 @@ class NeighborList {
   std::vector<double> radius_at_build_;
   // cells (kept to avoid re-allocating on every rebuild)
   std::vector<int> cell_start_, cell_particles_, particle_cell_;
+  std::vector<Vec3> cell_position_;  // positions and radii in cell order, for the scan
+  std::vector<double> cell_radius_;
   std::vector<std::vector<int>> thread_partner_;
   std::vector<std::vector<std::uint8_t>> thread_image_;
   long builds_ = 0;

@@ -624,31 +624,22 @@ void Engine::pair_forces(ContactModel<Law>& model, Totals& totals) {
   const bool any_bonded = !bonds_.i.empty();
   constexpr bool sum_rule = SumRule;
   if constexpr (sum_rule) thread_stiffness_.resize(static_cast<std::size_t>(T));
+  // Several threads and only pair contacts: each thread owns its range of particles and writes
+  // their forces directly; a contribution to a particle of a later thread's range goes to a
+  // short "ghost" list, added by its owner after the barrier. (With bonds or walls, whose loops
+  // are split differently, each thread sums into a whole-size buffer instead; zeroing and
+  // summing those buffers costs as much as a sparse packing's contacts.)
+  const bool owned = T > 1 && !any_bonded && walls_.empty();
+  if (owned) {
+    thread_ghosts_.resize(static_cast<std::size_t>(T));
+    if constexpr (sum_rule) shared_stiffness_.resize(static_cast<std::size_t>(n));
+  }
   std::array<Vec3, 27> offsets;  // local copy: the force stores below cannot alias it
   for (int c = 0; c < 27; ++c) offsets[c] = neighbors_.image_offset(c);
 
 #pragma omp parallel num_threads(T)
   {
     const int t = omp_get_thread_num();
-    Vec3* __restrict force;
-    Vec3* __restrict torque;
-    if (T == 1) {
-      force = particles_.force.data();
-      torque = particles_.torque.data();
-    } else {
-      thread_force_[t].resize(n);
-      thread_torque_[t].resize(n);
-      force = thread_force_[t].data();
-      torque = thread_torque_[t].data();
-    }
-    std::fill(force, force + n, Vec3{});
-    std::fill(torque, torque + n, Vec3{});
-    double* __restrict stiffness = nullptr;
-    if constexpr (sum_rule) {
-      thread_stiffness_[t].assign(n, 0.0);
-      stiffness = thread_stiffness_[t].data();
-    }
-    Totals local;
     // Contiguous ranges of particles holding about equal numbers of pairs; each particle's
     // pairs belong to one thread, so its own force is summed in registers.
     auto first_particle = [&](int thread) {
@@ -658,6 +649,37 @@ void Engine::pair_forces(ContactModel<Law>& model, Totals& totals) {
     };
     const int i_begin = first_particle(t);
     const int i_end = t + 1 == T ? n : first_particle(t + 1);
+    Vec3* __restrict force;
+    Vec3* __restrict torque;
+    double* __restrict stiffness = nullptr;
+    if (T == 1 || owned) {
+      force = particles_.force.data();
+      torque = particles_.torque.data();
+      // Owned: zero only this thread's range (no other thread writes it before the barrier).
+      const int zero_begin = owned ? i_begin : 0, zero_end = owned ? i_end : n;
+      std::fill(force + zero_begin, force + zero_end, Vec3{});
+      std::fill(torque + zero_begin, torque + zero_end, Vec3{});
+      if constexpr (sum_rule) {
+        std::vector<double>& buffer = owned ? shared_stiffness_ : thread_stiffness_[t];
+        buffer.resize(static_cast<std::size_t>(n));
+        stiffness = buffer.data();
+        std::fill(stiffness + zero_begin, stiffness + zero_end, 0.0);
+      }
+      if (owned) thread_ghosts_[t].clear();
+    } else {
+      thread_force_[t].resize(n);
+      thread_torque_[t].resize(n);
+      force = thread_force_[t].data();
+      torque = thread_torque_[t].data();
+      std::fill(force, force + n, Vec3{});
+      std::fill(torque, torque + n, Vec3{});
+      if constexpr (sum_rule) {
+        thread_stiffness_[t].assign(n, 0.0);
+        stiffness = thread_stiffness_[t].data();
+      }
+    }
+    std::vector<Ghost>* ghosts = owned ? &thread_ghosts_[t] : nullptr;
+    Totals local;
     for (int i = i_begin; i < i_end; ++i) {
       const Vec3 xi = x[i], vi = v[i], wi = w[i];
       const double ri = rad[i];
@@ -698,12 +720,14 @@ void Engine::pair_forces(ContactModel<Law>& model, Totals& totals) {
         local.max_stiffness_over_mass =
             std::max(local.max_stiffness_over_mass, f.stiffness * std::max(inverse_mass_i, inverse_mass[j]));
         force_i -= f.force_on_j;
-        force[j] += f.force_on_j;
         torque_i += f.torque_i;
-        torque[j] += f.torque_j;
-        if constexpr (sum_rule) {
-          stiffness_i += f.stiffness;
-          stiffness[j] += f.stiffness;
+        if constexpr (sum_rule) stiffness_i += f.stiffness;
+        if (ghosts && j >= i_end) {
+          ghosts->push_back(Ghost{j, f.force_on_j, f.torque_j, f.stiffness});
+        } else {
+          force[j] += f.force_on_j;
+          torque[j] += f.torque_j;
+          if constexpr (sum_rule) stiffness[j] += f.stiffness;
         }
         if constexpr (Measure) {
           ++local.contacts;
@@ -725,7 +749,17 @@ void Engine::pair_forces(ContactModel<Law>& model, Totals& totals) {
     if (!walls_.empty()) wall_forces<Law, Measure>(model, t, force, torque, stiffness, local);
     thread_totals_[t] = local;
 #pragma omp barrier
-    if (T > 1) {
+    if (owned) {
+      // Contributions of earlier threads to this thread's particles, in thread order:
+      // deterministic for a fixed thread count.
+      for (int s = 0; s < t; ++s)
+        for (const Ghost& g : thread_ghosts_[s]) {
+          if (g.particle < i_begin || g.particle >= i_end) continue;
+          force[g.particle] += g.force;
+          torque[g.particle] += g.torque;
+          if constexpr (sum_rule) stiffness[g.particle] += g.stiffness;
+        }
+    } else if (T > 1) {
       // Sum the thread buffers in thread order: deterministic for a fixed thread count.
 #pragma omp for schedule(static)
       for (int k = 0; k < n; ++k) {
@@ -742,11 +776,15 @@ void Engine::pair_forces(ContactModel<Law>& model, Totals& totals) {
       // The stiffest particle: sum of its contact stiffnesses over its mass (fixed particles
       // have zero inverse mass and drop out). Max is order-independent: deterministic.
       double largest = 0.0;
+      if (T == 1 || owned) {
+        for (int k = i_begin; k < i_end; ++k) largest = std::max(largest, stiffness[k] * inverse_mass[k]);
+      } else {
 #pragma omp for schedule(static)
-      for (int k = 0; k < n; ++k) {
-        double sum = 0.0;
-        for (int s = 0; s < T; ++s) sum += thread_stiffness_[s][k];
-        largest = std::max(largest, sum * inverse_mass[k]);
+        for (int k = 0; k < n; ++k) {
+          double sum = 0.0;
+          for (int s = 0; s < T; ++s) sum += thread_stiffness_[s][k];
+          largest = std::max(largest, sum * inverse_mass[k]);
+        }
       }
       thread_totals_[t].max_stiffness_over_mass = largest;
     }

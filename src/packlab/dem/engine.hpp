@@ -276,6 +276,14 @@ class Engine {
   ContactModels model_;
   std::vector<std::vector<Vec3>> thread_force_, thread_torque_;
   std::vector<std::vector<double>> thread_stiffness_;  // stiffness_sum rule: per thread, per particle
+  // Several threads, pair contacts only: a force on a particle of a later thread's range.
+  struct Ghost {
+    int particle;
+    Vec3 force, torque;
+    double stiffness;
+  };
+  std::vector<std::vector<Ghost>> thread_ghosts_;
+  std::vector<double> shared_stiffness_;   // stiffness_sum rule, owned mode: per particle
   std::vector<Totals> thread_totals_;
   int threads_ = 1;
   double dt_ = 0.0;
