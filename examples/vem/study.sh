@@ -54,7 +54,7 @@ if wants mass; then  # void mass scaling c = 0.25 instead of 1
   run n050_mass025 --config "$OUT/cfg/mass025.toml" $N --voids 500
 fi
 if wants stiffness; then  # Fig. 6-8: K_n = k_n,V / k_n,S with k_n,S = 1e3 N/m
-  for knv in 1e1 1e0 1e3 1e-1 1e-2 1e-3; do
+  for knv in 1e1 1e0 1e3 1e-1 1e-2 1e-3; do  # cheap ones first
     run stiffness_kns1e3_knv$knv --config "$HERE/stiffness_study/kns1e3_knv$knv.toml" $N --voids 500
   done
 fi
