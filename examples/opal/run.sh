@@ -1,12 +1,18 @@
 #!/usr/bin/env bash
 # The inverse-opal study of docs/opal.md at reduced resolution (15 nm particles, pores of 10
-# particle diameters = 150 nm instead of 762 nm), single-threaded. Every figure of docs/opal.md
-# comes from this script; the total is about 30 CPU-minutes.
+# particle diameters = 150 nm instead of 762 nm), single-threaded. Every number and figure of
+# docs/opal.md comes from this script; the total is about 30 CPU-minutes. It ends with the
+# tables of docs/data/ (OUT/docs-data/opal_*.csv) and the figures drawn from them (OUT/figures):
 #   examples/opal/run.sh [OUT] [PACKLAB]
+#   cp OUT/docs-data/opal_*.csv docs/data/ && make docs      # refresh the docs from the new run
 set -euo pipefail
 HERE=$(cd "$(dirname "$0")" && pwd)
 OUT=${1:-opal-study}
 PACKLAB=${2:-packlab}
+# The Python package (plots) and, beside a built PACKLAB, the compiled module (packlab.fit_porosity_law).
+BIN=$(command -v "$PACKLAB" || true)
+PY_BUILD=${BIN:+$(dirname "$BIN")/python}
+export PYTHONPATH="$HERE/../../python${PY_BUILD:+:$PY_BUILD}${PYTHONPATH:+:$PYTHONPATH}" MPLBACKEND=Agg
 CFG="$HERE/silica.toml"
 mkdir -p "$OUT"
 d=15e-9
@@ -16,6 +22,11 @@ $PACKLAB generate fba --box 150e-9,150e-9,210e-9 --diameter $d --porosity 0.38 -
   --seed 1 --quiet --no-plots --out "$OUT/bulk-packing"
 $PACKLAB bond "$OUT/bulk-packing/packing.vtu" --model beam --cutoff-ratio 1.75 --quiet --out "$OUT/bulk.vtu"
 $PACKLAB calibrate compress "$OUT/bulk.vtu" --bulk-factor --config "$CFG" --out "$OUT/bulk"
+# The same sample with open sides (a free-standing pillar) and with eq. 16 applied to compressed
+# bonds too (the two other readings in docs/opal.md).
+$PACKLAB calibrate compress "$OUT/bulk.vtu" --bulk-factor --config "$CFG" --sides open --out "$OUT/bulk-open"
+$PACKLAB calibrate compress "$OUT/bulk.vtu" --bulk-factor --config "$CFG" --compressive-breakage true \
+  --out "$OUT/bulk-compressive"
 
 # 2. FCC inverse opal ([111] along z), 2 x 1 lateral periods, 3 pore layers (box height =
 #    substrate 2 d + 2 layer spacings + D, like the paper's 2.01 um), two fixed substrate layers,
@@ -30,6 +41,10 @@ $PACKLAB generate fba --box 300e-9,259.81e-9,412.95e-9 --diameter $d --porosity 
   --seed 2 --quiet --no-plots --out "$OUT/fcc-packing"
 $PACKLAB build opal "$OUT/fcc-packing/packing.vtu" --pores fcc --pore-diameter $D --pore-spacing 1.087 --orientation 111 --quiet \
   --out "$OUT/fcc"
+# Why not D = a: touching pores of D = 150 nm, widened by eq. (1) to nearly cut struts.
+$PACKLAB build opal "$OUT/fcc-packing/packing.vtu" --pores fcc --pore-diameter $a --pore-spacing 1 --orientation 111 \
+  --quiet --out "$OUT/fcc-touching"
+$PACKLAB test compress "$OUT/fcc-touching/opal.vtu" --config "$CFG" --no-vtu --out "$OUT/fcc-touching-test"
 # The paper's bond parameters as they are, with bond strain and stress snapshots (Fig. 7, Table 2).
 $PACKLAB test compress "$OUT/fcc/opal.vtu" --config "$CFG" --snapshot-strains 0.005,0.01,0.015,0.02 \
   --out "$OUT/fcc-paper"
@@ -57,3 +72,9 @@ $PACKLAB test compress "$OUT/fcc-coated/opal.vtu" --config "$CFG" --snapshot-str
 #    docs/opal.md) to halve the cost.
 /usr/bin/python3 "$HERE/porosity_study.py" --out "$OUT/porosity" --packlab "$PACKLAB" --config "$CFG" \
   --bulk-report "$OUT/bulk/report.json" --quasi-static 2e-4 --counts 2,3,4 --seeds 1,2
+
+# 6. The tables of docs/data/ and the figures of docs/opal.md drawn from them (the same code as
+#    make docs: docs/figures/make-opal-figures.sh).
+/usr/bin/python3 "$HERE/study_figures.py" tables "$OUT" "$OUT/docs-data"
+/usr/bin/python3 "$HERE/study_figures.py" figures "$OUT/docs-data" "$OUT/figures"
+echo "to refresh the docs: cp $OUT/docs-data/opal_*.csv docs/data/ && make docs"

@@ -1,10 +1,16 @@
-// packlab.compress / packlab.fit_porosity_law: the uniaxial compression test of a bonded model
-// (mechanics/compression_test.hpp) and the porosity laws (analyze/porosity_laws.hpp) from Python.
+// packlab.compress / packlab.calibrate_compress / packlab.fit_porosity_law: the uniaxial
+// compression test of a bonded model (mechanics/compression_test.hpp), its calibration
+// (mechanics/calibration.hpp, eq. 18-20) and the porosity laws (analyze/porosity_laws.hpp) from Python.
 #include <fmt/format.h>
+
+#include <cstdint>
+#include <utility>
 
 #include "common.hpp"
 #include "packlab/analyze/porosity_laws.hpp"
+#include "packlab/core/error.hpp"
 #include "packlab/core/packing.hpp"
+#include "packlab/mechanics/calibration.hpp"
 #include "packlab/mechanics/compression_test.hpp"
 
 namespace packlab::python {
@@ -33,6 +39,58 @@ py::dict curve_columns(const std::vector<mechanics::CompressionPoint>& curve) {
   d["strain_energy"] = to_numpy(std::move(strain_energy));
   d["broken_bonds"] = to_numpy(std::move(broken));
   return d;
+}
+
+// The keywords shared by packlab.compress and packlab.calibrate_compress (the flags of
+// `packlab test compress`), as the command line resolves them: CompressionSetup::finish fixes
+// the automatic strain rate from the starting bond modulus.
+mechanics::CompressionSetup make_setup(const Packing& model, double bond_youngs_modulus, double bond_poisson,
+                                       double bond_strength, double density, double titania_youngs_modulus,
+                                       double titania_poisson, double titania_strength, double strain_rate,
+                                       double quasi_static, double max_strain, double stop_drop,
+                                       const std::string& sides, double substrate_layers, double damping,
+                                       double time_step, long samples, std::vector<double> snapshot_strains,
+                                       int threads) {
+  mechanics::CompressionSetup s;
+  s.materials.silica_youngs_modulus = bond_youngs_modulus;
+  s.materials.silica_poisson_ratio = bond_poisson;
+  s.materials.silica_strength = bond_strength;
+  s.materials.silica_density = density;
+  s.materials.titania_youngs_modulus = titania_youngs_modulus;
+  s.materials.titania_poisson_ratio = titania_poisson;
+  s.materials.titania_strength = titania_strength;
+  s.materials.damping = damping;
+  s.strain_rate = strain_rate;
+  s.quasi_static = quasi_static;
+  s.options.max_strain = max_strain;
+  s.options.stop_drop = stop_drop;
+  s.options.sides = sides;
+  s.options.substrate_layers = substrate_layers;
+  s.options.time_step = time_step;
+  s.options.samples = samples;
+  s.options.threads = threads;
+  s.snapshot_strains = std::move(snapshot_strains);
+  s.finish(model);
+  return s;
+}
+
+py::dict calibration_dict(const mechanics::CalibrationResult& c) {
+  std::vector<double> e_b, sigma, e, strength;
+  std::vector<std::uint8_t> fd;
+  for (const auto& h : c.history) {
+    e_b.push_back(h.parameters[0]);
+    sigma.push_back(h.parameters[1]);
+    e.push_back(h.responses[0]);
+    strength.push_back(h.responses[1]);
+    fd.push_back(h.finite_difference ? 1 : 0);
+  }
+  py::dict history;
+  history["bond_youngs_modulus"] = to_numpy(std::move(e_b));
+  history["bond_strength"] = to_numpy(std::move(sigma));
+  history["youngs_modulus"] = to_numpy(std::move(e));
+  history["strength"] = to_numpy(std::move(strength));
+  history["finite_difference"] = to_numpy_bool(std::move(fd));
+  return history;
 }
 
 }  // namespace
@@ -113,26 +171,10 @@ void bind_compress(py::module_& m) {
          double quasi_static, double max_strain, double stop_drop, const std::string& sides, double substrate_layers,
          double damping, double time_step, long samples, std::vector<double> snapshot_strains, int threads,
          py::object progress, double progress_interval) {
-        mechanics::CompressionSetup s;
-        s.materials.silica_youngs_modulus = bond_youngs_modulus;
-        s.materials.silica_poisson_ratio = bond_poisson;
-        s.materials.silica_strength = bond_strength;
-        s.materials.silica_density = density;
-        s.materials.titania_youngs_modulus = titania_youngs_modulus;
-        s.materials.titania_poisson_ratio = titania_poisson;
-        s.materials.titania_strength = titania_strength;
-        s.materials.damping = damping;
-        s.strain_rate = strain_rate;
-        s.quasi_static = quasi_static;
-        s.options.max_strain = max_strain;
-        s.options.stop_drop = stop_drop;
-        s.options.sides = sides;
-        s.options.substrate_layers = substrate_layers;
-        s.options.time_step = time_step;
-        s.options.samples = samples;
-        s.options.threads = threads;
-        s.snapshot_strains = std::move(snapshot_strains);
-        s.finish(model);
+        mechanics::CompressionSetup s =
+            make_setup(model, bond_youngs_modulus, bond_poisson, bond_strength, density, titania_youngs_modulus,
+                       titania_poisson, titania_strength, strain_rate, quasi_static, max_strain, stop_drop, sides,
+                       substrate_layers, damping, time_step, samples, std::move(snapshot_strains), threads);
         ProgressCallback callback(progress, progress_interval);
         if (!progress.is_none())
           s.options.on_point = [&](const mechanics::CompressionPoint& p) { callback.tick(false, p.strain, p.stress); };
@@ -153,6 +195,111 @@ transit). Silica = bond material 0 (and particle types structural/substrate), ti
 material 1 (coating particles). Returns a CompressionResult (youngs_modulus, strength [Pa],
 curve, snapshots, breaks, model). The GIL is released while it runs; progress(strain, stress)
 is called at most every progress_interval seconds.
+)doc");
+
+  m.def(
+      "calibrate_compress",
+      [](const Packing& model, double target_youngs_modulus, double target_strength, bool bulk_factor,
+         double tolerance, int max_iterations, double relative_step, bool full_jacobian, double bond_youngs_modulus,
+         double bond_poisson, double bond_strength, double density, double titania_youngs_modulus,
+         double titania_poisson, double titania_strength, double strain_rate, double quasi_static, double max_strain,
+         double stop_drop, const std::string& sides, double substrate_layers, double damping, double time_step,
+         long samples, int threads, py::object progress) {
+        mechanics::CompressionSetup s =
+            make_setup(model, bond_youngs_modulus, bond_poisson, bond_strength, density, titania_youngs_modulus,
+                       titania_poisson, titania_strength, strain_rate, quasi_static, max_strain, stop_drop, sides,
+                       substrate_layers, damping, time_step, samples, {}, threads);
+        py::dict d;
+        if (bulk_factor) {
+          mechanics::CompressionResult r;
+          {
+            py::gil_scoped_release nogil;
+            r = mechanics::run_compression(model, s.options);
+          }
+          d["mode"] = "bulk_factor";
+          d["bond_youngs_modulus"] = s.materials.silica_youngs_modulus;
+          d["bond_strength"] = s.materials.silica_strength;
+          d["bulk_factor"] = r.youngs_modulus / s.materials.silica_youngs_modulus;
+          d["strength_ratio"] = r.strength > 0 ? r.youngs_modulus / r.strength : 0.0;
+          d["strength_factor"] = r.strength / s.materials.silica_strength;
+          d["youngs_modulus"] = r.youngs_modulus;
+          d["strength"] = r.strength;
+          d["final"] = py::cast(std::move(r));
+          return d;
+        }
+        require(target_youngs_modulus > 0.0, "target_youngs_modulus", target_youngs_modulus,
+                "> 0 Pa (or use bulk_factor=True)");
+        require(target_strength > 0.0, "target_strength", target_strength, "> 0 Pa");
+        mechanics::CalibrationOptions o;
+        o.tolerance = tolerance;
+        o.max_iterations = max_iterations;
+        o.relative_step = relative_step;
+        o.diagonal = !full_jacobian;
+        // As `packlab calibrate compress`: each evaluation changes the silica bonds' E_b and
+        // sigma_max (= tau_max) only; the strain rate stays the one of the starting values.
+        std::vector<std::pair<std::vector<double>, mechanics::CompressionResult>> runs;
+        auto response = [&](const std::vector<double>& p) {
+          mechanics::CompressionSetup run = s;
+          run.materials.silica_youngs_modulus = p[0];
+          run.materials.silica_strength = p[1];
+          run.options.types = mechanics::opal_particle_types(run.materials);
+          run.options.bond_materials = mechanics::opal_bond_materials(run.materials);
+          mechanics::CompressionResult r = mechanics::run_compression(model, run.options);
+          if (!progress.is_none()) {
+            py::gil_scoped_acquire gil;
+            progress(static_cast<int>(runs.size()) + 1, p[0], p[1], r.youngs_modulus, r.strength);
+          }
+          std::vector<double> out{r.youngs_modulus, r.strength};
+          runs.emplace_back(p, std::move(r));
+          return out;
+        };
+        mechanics::CalibrationResult c;
+        {
+          py::gil_scoped_release nogil;
+          c = mechanics::calibrate(response, {s.materials.silica_youngs_modulus, s.materials.silica_strength},
+                                   {target_youngs_modulus, target_strength}, o);
+        }
+        d["mode"] = "calibrate";
+        d["converged"] = c.converged;
+        d["reason"] = c.reason();
+        d["iterations"] = c.iterations;
+        d["simulations"] = c.evaluations;
+        d["bond_youngs_modulus"] = c.parameters[0];
+        d["bond_strength"] = c.parameters[1];
+        d["youngs_modulus"] = c.responses[0];
+        d["strength"] = c.responses[1];
+        d["history"] = calibration_dict(c);
+        d["final"] = py::none();
+        for (auto it = runs.rbegin(); it != runs.rend(); ++it)
+          if (it->first == c.parameters) {
+            d["final"] = py::cast(std::move(it->second));
+            break;
+          }
+        return d;
+      },
+      py::arg("model"), py::kw_only(), py::arg("target_youngs_modulus") = 0.0, py::arg("target_strength") = 0.0,
+      py::arg("bulk_factor") = false, py::arg("tolerance") = 0.005, py::arg("max_iterations") = 20,
+      py::arg("relative_step") = 0.05, py::arg("full_jacobian") = false, py::arg("bond_youngs_modulus") = 6.53e9,
+      py::arg("bond_poisson") = 0.17, py::arg("bond_strength") = 94.3e6, py::arg("density") = 1297.0,
+      py::arg("titania_youngs_modulus") = 17.89e9, py::arg("titania_poisson") = 0.28,
+      py::arg("titania_strength") = 834e6, py::arg("strain_rate") = 0.0, py::arg("quasi_static") = 1e-4,
+      py::arg("max_strain") = 0.05, py::arg("stop_drop") = 0.6, py::arg("sides") = "periodic",
+      py::arg("substrate_layers") = 2.0, py::arg("damping") = 0.7, py::arg("time_step") = 0.0,
+      py::arg("samples") = 400, py::arg("threads") = 1, py::arg("progress") = py::none(), R"doc(
+`packlab calibrate compress` from Python (bpm-inverse-opals eq. 18-20). With the targets:
+Newton steps on the silica bond Young's modulus E_b and strength sigma_max (= tau_max), starting
+from bond_youngs_modulus and bond_strength, with finite-difference derivatives (relative_step),
+until the compression test gives target_youngs_modulus and target_strength [Pa] within
+tolerance (relative); the paper's diagonal scheme unless full_jacobian. With bulk_factor=True
+(a pore-free sample): one test, K_E = E_macro / E_b. The other keywords are those of
+packlab.compress (the automatic strain rate is fixed by the starting E_b, as on the command line).
+Returns a dict: mode, bond_youngs_modulus, bond_strength, youngs_modulus, strength, final
+(the CompressionResult of the result's parameters); calibration: converged, reason, iterations,
+simulations, history {bond_youngs_modulus, bond_strength, youngs_modulus, strength,
+finite_difference} (every simulation in order); bulk factor: bulk_factor, strength_ratio
+(E_macro / strength), strength_factor (strength / sigma_max). A calibration that does not
+converge returns converged=False. progress(run, E_b, sigma_max, E, strength) is called after
+each simulation.
 )doc");
 
   using analyze::PorosityFit;

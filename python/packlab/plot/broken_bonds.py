@@ -1,5 +1,5 @@
 """Broken bonds against the sample strain, with the stress for reference (``curve.csv`` of
-``packlab test compress``)."""
+``packlab test compress``, or from Python a dict of its columns strain, stress, broken_bonds)."""
 
 import argparse
 
@@ -7,7 +7,7 @@ from packlab.plot import new_figure, read_csv, save
 
 
 def figure(curve_csv):
-    data = read_csv(curve_csv)
+    data = curve_csv if isinstance(curve_csv, dict) else read_csv(curve_csv)
     fig, ax = new_figure()
     ax.plot(data["strain"] * 100, data["broken_bonds"], "C3", label="broken bonds")
     ax.set_xlabel("strain [%]")

@@ -1,6 +1,7 @@
 """Compression test: stress-strain curve with the Young's modulus fit and the peak, or the
 force-displacement curve (the ``curve.csv`` written by ``packlab test compress``). Several
-curves may be given (e.g. two strain rates) and are drawn together."""
+curves may be given (e.g. two strain rates) and are drawn together; from Python a curve may
+also be a dict of columns (as ``read_csv`` returns them: strain, stress, ...)."""
 
 import argparse
 
@@ -9,11 +10,14 @@ from packlab.plot import new_figure, read_csv, save
 
 def figure(curve_csvs, modulus=0.0, intercept=0.0, fit_begin=0.0, fit_end=0.0, force_displacement=False, labels=None):
     fig, ax = new_figure()
-    if isinstance(curve_csvs, str):
+    if isinstance(curve_csvs, (str, dict)):
         curve_csvs = [curve_csvs]
     for k, path in enumerate(curve_csvs):
-        data = read_csv(path)
-        label = labels[k] if labels and k < len(labels) else (path if len(curve_csvs) > 1 else None)
+        data = path if isinstance(path, dict) else read_csv(path)
+        if labels and k < len(labels):
+            label = labels[k]
+        else:
+            label = path if len(curve_csvs) > 1 and not isinstance(path, dict) else None
         if force_displacement:
             ax.plot(data["displacement"] * 1e9, data["force"] * 1e6, label=label)
         else:
