@@ -37,6 +37,8 @@ fi
 quick=${BENCH_QUICK:-0}
 run() { echo; echo "== $* =="; "$BUILD/$@"; }
 run bench_analyze 1
+run bench_neighbor 8000 2000 0.4 200 1   # neighbour-list build, 10,000 particles (VEM stage I)
+run bench_neighbor 8000 2000 0.4 200 2
 run bench_ls 10000 0.04          # LS to jamming, 10^4 monodisperse (PackingGeneration: 87 s at rate 1e-2)
 run bench_ls 10000 3             # fast compression (PackingGeneration: 22.7 s at rate 1e-1)
 run bench_ls 10000 0.015 0.6 0.313 0.333   # bimodal case of the paper to c = 0.6
@@ -44,7 +46,7 @@ if [ "$quick" = 1 ]; then
   run bench_vem 1 8000 2000 0.4 20          # Fig. 1 case, first 20 void cycles (rates)
 else
   run bench_ls 100000 3                     # 10^5 monodisperse (PackingGeneration: 555 s)
-  run bench_vem 1                           # Fig. 1 case end to end (about 20 minutes)
+  run bench_vem 2                           # Fig. 1 case end to end on 2 threads (7-9 minutes)
 fi
 # Issue #6: one orientation of the N = 8000 shear case (doh §2.4), contact bonds.
 run bench_shear "$ROOT/examples/shear/data/vem_ns8000_nv2000.xyz" 1 $([ "$quick" = 1 ] && echo "2000 2" || echo "10000 10")
