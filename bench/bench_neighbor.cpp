@@ -12,7 +12,6 @@
 
 #include "packlab/core/neighbor_list.hpp"
 #include "packlab/core/random.hpp"
-#include "packlab/core/spatial_sort.hpp"
 
 using namespace packlab;
 
@@ -32,17 +31,6 @@ int main(int argc, char** argv) {
   for (long i = 0; i < structural + voids; ++i) {
     position.push_back({rng.uniform(0.0, edge), rng.uniform(0.0, edge), rng.uniform(0.0, edge)});
     radius.push_back(i < structural ? 1.0 : 0.005);
-  }
-  if (std::getenv("SORTED")) {
-    const std::vector<int> order = spatial_order(box, position, 2.4);
-    std::vector<Vec3> p2;
-    std::vector<double> r2;
-    for (int k : order) {
-      p2.push_back(position[k]);
-      r2.push_back(radius[k]);
-    }
-    position = p2;
-    radius = r2;
   }
   NeighborList list(0.2);
   list.build(box, position, radius, threads);
