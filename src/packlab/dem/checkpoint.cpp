@@ -78,13 +78,17 @@ void Engine::load_state(std::istream& in) {
   binary::read_vector(in, wraps_, "periodic images");
   std::vector<int> bond_state;
   binary::read_vector(in, bond_state, "bond states");
-  std::size_t history_size = 0;
-  std::visit(
-      [&](auto& bonds) {
-        binary::read_vector(in, bonds.history, "bond histories");
-        history_size = bonds.history.size();
-      },
-      bond_model_);
+  // Reads the history vector `member` of the law model held by `models`; returns its size.
+  const auto read_histories = [&](auto& models, auto member, const char* what) {
+    return std::visit(
+        [&](auto& model) {
+          auto& v = member(model);
+          binary::read_vector(in, v, what);
+          return v.size();
+        },
+        models);
+  };
+  const std::size_t history_size = read_histories(bond_model_, [](auto& m) -> auto& { return m.history; }, "bond histories");
   std::uint64_t broken = 0;
   binary::read(in, broken, "broken bond count");
   if (wraps_.size() != n || bond_state.size() != bonds_.i.size() || history_size != bonds_.i.size())
@@ -92,13 +96,8 @@ void Engine::load_state(std::istream& in) {
   bonds_.state = std::move(bond_state);
   broken_bonds_ = broken;
   binary::read_vector(in, walls_, "walls");
-  std::size_t wall_history_size = 0;
-  std::visit(
-      [&](auto& model) {
-        binary::read_vector(in, model.wall_history, "wall contact histories");
-        wall_history_size = model.wall_history.size();
-      },
-      model_);
+  const std::size_t wall_history_size =
+      read_histories(model_, [](auto& m) -> auto& { return m.wall_history; }, "wall contact histories");
   binary::read_vector(in, wall_force_, "wall forces");
   if (wall_history_size != n * walls_.size() || wall_force_.size() != walls_.size())
     fail_input("checkpoint is damaged: wall data do not match");
