@@ -1,7 +1,8 @@
 // Micro-benchmarks (Google Benchmark) of the kernels the end-to-end benchmarks spend their time
 // in, each reported as a rate (items_per_second):
 //   pair_kernel/contact/<law>, pair_kernel/bond/<law>  evaluate() of every registered contact
-//       and bond law over a batch of touching pairs (pair evaluations/s);
+//       and bond law over a batch of touching (bonds: stretched or compressed) pairs (pair
+//       evaluations/s);
 //   neighbor_build/N         NeighborList::build on a random periodic packing (particles/s);
 //   ls_event/N               Lubachevsky-Stillinger event-driven MD, one block of 20 events per
 //                            particle at volume fraction 0.6 without growth (collisions/s, and
