@@ -97,7 +97,8 @@ Engine::Engine(const Packing& packing, const EngineConfig& config) : packing_(pa
           "in (0, 10]");
   require(config_.max_time_step >= 0.0 && std::isfinite(config_.max_time_step), "max_time_step",
           config_.max_time_step, ">= 0 s (0 = automatic)");
-  require(config_.threads >= 0, "threads", config_.threads, ">= 0 (0 = all cores)");
+  // An OpenMP team of 10^5 threads crashes the runtime; no machine this runs on has more than 1024 cores.
+  require(config_.threads >= 0 && config_.threads <= 1024, "threads", config_.threads, "in [0, 1024] (0 = all cores)");
 
   const std::size_t n = packing_.size();
   int type_count = 1;
