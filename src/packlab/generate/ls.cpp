@@ -9,6 +9,7 @@
 #include <limits>
 
 #include "packlab/core/error.hpp"
+#include "packlab/core/neighbor_list.hpp"
 #include "packlab/core/spatial_sort.hpp"
 
 namespace packlab::generate {
