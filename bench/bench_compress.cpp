@@ -1,4 +1,4 @@
-// Compression test of an inverse opal of about 50,000 particles (bpm-inverse-opals, issue #7):
+// Compression test of an inverse opal of about 50,000 particles (bpm-inverse-opals):
 // particle-steps and bond-steps per second of the DEM engine under load (glued plate moving at
 // the automatic quasi-static rate, bonds deforming), and the memory per particle and per bond
 // (heap bytes the engine allocates, from glibc's mallinfo2: an engine with the bonds minus one
