@@ -24,7 +24,7 @@ struct BondingOptions {
   int threads = 1;
 };
 
-// Cutoff ratio of the named model (named like the bond laws of dem/bond_law.hpp): "contact" ->
+// Cutoff ratio of the named model (named like the bond laws of dem/bond/): "contact" ->
 // 1 + eps, "elastic" -> elastic_cutoff (InputError for an
 // unknown model naming the allowed ones).
 double bonding_cutoff_ratio(const std::string& model, double eps, double elastic_cutoff);

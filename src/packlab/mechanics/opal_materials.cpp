@@ -8,8 +8,8 @@
 
 namespace packlab::mechanics {
 
-std::vector<dem::TypeParams> opal_particle_types(const OpalMaterials& m) {
-  dem::TypeParams silica;
+std::vector<dem::Material> opal_particle_types(const OpalMaterials& m) {
+  dem::Material silica;
   silica.youngs_modulus = m.silica_youngs_modulus;
   silica.poisson_ratio = m.silica_poisson_ratio;
   silica.density = m.silica_density;
@@ -17,11 +17,11 @@ std::vector<dem::TypeParams> opal_particle_types(const OpalMaterials& m) {
   silica.friction = m.friction;
   silica.rolling_friction = m.rolling_friction;
   silica.damping = m.damping;
-  dem::TypeParams titania = silica;
+  dem::Material titania = silica;
   titania.youngs_modulus = m.titania_youngs_modulus;
   titania.poisson_ratio = m.titania_poisson_ratio;
   titania.density = m.titania_density;
-  std::vector<dem::TypeParams> types(5, silica);
+  std::vector<dem::Material> types(5, silica);
   types[static_cast<std::size_t>(particle_type::coating)] = titania;
   return types;
 }

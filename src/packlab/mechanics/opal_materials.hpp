@@ -29,13 +29,13 @@ struct OpalMaterials {
   double damping = 0.7;
   double bond_radius_ratio = 1.0;          // R_b / min(r_i, r_j)
   double relaxation_time = 1e-9;           // [s] (1 % stiffness per 1e-11 s)
-  bool compressive_breakage = false;       // eq. 16 for compressed bonds too (dem/bond_law.hpp)
+  bool compressive_breakage = false;       // eq. 16 for compressed bonds too (dem/bond/elastic_bond.hpp)
 };
 
 // Per particle type (structural, void, pore, coating, substrate: core/packing.hpp) Hertz-Mindlin
 // parameters, and per bond material (generate/opal.hpp: silica, titania, substrate) elastic
 // bond parameters. Substrate particles and substrate-substrate bonds take silica's values.
-std::vector<dem::TypeParams> opal_particle_types(const OpalMaterials& m);
+std::vector<dem::Material> opal_particle_types(const OpalMaterials& m);
 std::vector<dem::ElasticBond::Params> opal_bond_materials(const OpalMaterials& m);
 
 // Everything a compression run of an opal-type model needs, as the command line sets it:

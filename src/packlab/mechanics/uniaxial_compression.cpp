@@ -51,8 +51,7 @@ UniaxialCompressionResult run_uniaxial_compression(const Packing& bonded_model, 
   dem::EngineConfig config;
   config.contact_law = "hertz_mindlin";
   config.types = options.types;
-  config.bond_law = "elastic";
-  config.elastic_bond_materials = options.bond_materials;
+  config.bond_materials = options.bond_materials;
   config.time_step = options.time_step;
   config.time_step_safety = options.time_step_safety;
   config.threads = options.threads;

@@ -29,7 +29,7 @@
 //    plate force / A with A = the periodic cross-section Lx Ly, or the x-y extent of the spheres
 //    when the sides are open. Both compressive positive.
 //  - Quasi-static: the run is dynamic; the rate must be low enough that the result does not
-//    depend on it (DESIGN.md numerical notes). Local damping (TypeParams::damping) removes the
+//    depend on it (DESIGN.md numerical notes). Local damping (Material::damping) removes the
 //    elastic waves; the report carries the largest kinetic / strain energy ratio seen.
 //
 // Evaluation: Young's modulus by the "max_tangent" fit and the strength (peak stress) of
@@ -77,7 +77,7 @@ struct UniaxialCompressionSnapshot {
 };
 
 struct UniaxialCompressionOptions {
-  std::vector<dem::TypeParams> types;                   // per particle type (one entry: all)
+  std::vector<dem::Material> types;                   // per particle type (one entry: all)
   std::vector<dem::ElasticBond::Params> bond_materials; // per bond material (one entry: all)
   double strain_rate = 1e7;       // [1/s]
   double max_strain = 0.05;       // [-]
