@@ -1,4 +1,4 @@
-// packlab bond IN --model contact|beam [--eps 0.01] [--cutoff-ratio 1.75] --out FILE.vtu
+// packlab bond IN --model contact|elastic [--eps 0.01] [--cutoff-ratio 1.75] --out FILE.vtu
 // Turns a packing into a bonded model: a bond between every pair closer than the model's
 // cutoff, across periodic boundaries (generate/bonding.hpp). The bonds are stored in the file
 // (VTU: bonds as line cells with material, state, rest length and periodic image), so every
@@ -25,17 +25,17 @@ void add_bond(CLI::App& app) {
   };
   auto opt = std::make_shared<Options>();
   auto* cmd = app.add_subcommand(
-      "bond", "Bond every pair closer than a cutoff (contact bonds of touching pairs, or beam bonds within 1.75 d)");
+      "bond", "Bond every pair closer than a cutoff (contact bonds of touching pairs, or elastic bonds within 1.75 d)");
   cmd->add_option("in", opt->in, "Input packing (any readable format)")->required();
   cmd->add_option("--out", opt->out, "Output bonded model (.vtu: the format that stores bonds)")->required();
   cmd->add_option("--model", opt->model,
                   "contact: pairs with d < (1 + eps)(r_i + r_j) (PFC contact bonds, doh-elastic-properties "
-                  "§2.1); beam: pairs with d < cutoff-ratio (r_i + r_j) (elastic beam bonds, bpm-inverse-opals "
+                  "§2.1); elastic: pairs with d < cutoff-ratio (r_i + r_j) (elastic beam bonds, bpm-inverse-opals "
                   "§2.1)")
       ->capture_default_str();
   cmd->add_option("--eps", opt->eps, "Contact tolerance of the contact model, in [0, 1)")->capture_default_str();
   cmd->add_option("--cutoff-ratio", opt->cutoff_ratio,
-                  "Beam model: bond pairs closer than this times r_i + r_j (1.75 d for equal spheres), in [1, 2)")
+                  "Elastic model: bond pairs closer than this times r_i + r_j (1.75 d for equal spheres), in [1, 2)")
       ->capture_default_str();
   cmd->add_option("--threads", opt->threads, "Threads of the pair search")->capture_default_str();
   cmd->add_flag("--quiet", opt->quiet, "No output");

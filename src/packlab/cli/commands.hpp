@@ -18,12 +18,12 @@ void add_info(CLI::App& app);
 void add_convert(CLI::App& app);
 void add_relax(CLI::App& app);
 CLI::App* add_analyze(CLI::App& app);
-// Issue #4: LS growth, shaking, SCRM, RDF (add_analyze_rdf adds `rdf` to the analyze command).
+// LS growth, shaking, SCRM, RDF (add_analyze_rdf adds `rdf` to the analyze command).
 void add_generate_ls(CLI::App& generate);
 void add_generate_scrm(CLI::App& generate);
 void add_shake(CLI::App& app);
 void add_analyze_rdf(CLI::App& analyze);
-// Bonded models and mechanical tests (issues #6, #7): `bond`, `build opal`, `generate fba`,
+// Bonded models and mechanical tests: `bond`, `build opal`, `generate fba`,
 // `test shear|compress`, `calibrate shear|compress`.
 void add_bond(CLI::App& app);
 void add_generate_fba(CLI::App& generate);
