@@ -11,6 +11,7 @@
 #include "packlab/core/error.hpp"
 #include "packlab/generate/lattice.hpp"
 #include "packlab/io/packing_io.hpp"
+#include "../test_packings.hpp"
 
 namespace packlab::analyze {
 namespace {
@@ -59,9 +60,7 @@ TEST(Coordination, SeparatedLatticeIsAllRattlers) {
 TEST(Coordination, IterativeRattlerRemovalCascades) {
   // Three touching spheres in a row, open box: ends have 1 contact, the middle 2. With a
   // threshold of 2 one pass flags the ends; removing them leaves the middle with none.
-  Packing p;
-  p.box.periodic = {false, false, false};
-  p.box.length = {10, 10, 10};
+  Packing p = test::open_cube(10);
   for (int k = 0; k < 3; ++k) p.add({2.0 + 2.0 * k, 5, 5}, 1.0);
   Coordination once(0.01, 2, RattlerRule::single_pass), repeated(0.01, 2, RattlerRule::iterative);
   once.compute(p);

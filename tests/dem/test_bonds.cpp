@@ -8,6 +8,7 @@
 
 #include "packlab/core/error.hpp"
 #include "packlab/dem/engine.hpp"
+#include "checkpoint.hpp"
 
 using namespace packlab;
 using namespace packlab::dem;
@@ -136,18 +137,7 @@ TEST(ContactBond, SurvivesPeriodicWrapsAndKeepsItsImage) {
 TEST(ContactBond, CheckpointWithBondsContinuesBitwise) {
   Packing p = bonded_pair(0.015, {3, 10, 10}, {true, false, false});
   p.velocity = {{0.1, 0.02, 0}, {-0.05, 0, 0.01}};
-  const EngineConfig c = bond_config(inf, inf);
-  Engine straight(p, c);
-  straight.run(600);
-  Engine first(p, c);
-  first.run(300);
-  std::stringstream state;
-  first.save_state(state);
-  Engine resumed(p, c);
-  resumed.load_state(state);
-  resumed.run(300);
-  EXPECT_TRUE(resumed.particles().position == straight.particles().position);
-  EXPECT_TRUE(resumed.particles().velocity == straight.particles().velocity);
+  test::expect_checkpoint_continues_bitwise(p, bond_config(inf, inf), 300);
 }
 
 TEST(ContactBond, BondsWithoutParametersAreAnInputError) {

@@ -9,6 +9,7 @@
 
 #include "packlab/dem/engine.hpp"
 #include "packlab/dem/relax.hpp"
+#include "../test_packings.hpp"
 
 using namespace packlab;
 using namespace packlab::dem;
@@ -118,9 +119,7 @@ TEST(ContactBondRelax, ZeroingVelocitiesRemovesTheBondTensionWithoutOvershootAnd
   // Two free spheres bonded at a gap of 0.01 d: the bond pulls them to touching. With the
   // velocities zeroed after each step the gap shrinks monotonically (a steepest-descent walk)
   // and the run stops once the mean unbalanced force no longer decreases.
-  Packing p;
-  p.box.length = {10, 10, 10};
-  p.box.periodic = {false, false, false};
+  Packing p = test::open_cube(10);
   p.add({4.0, 2, 2}, 0.5);
   p.add({5.01, 2, 2}, 0.5);
   p.bonds.add(0, 1, {0, 0, 0}, 0, 1.01);

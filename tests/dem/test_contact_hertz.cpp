@@ -7,6 +7,7 @@
 #include "packlab/core/error.hpp"
 #include "packlab/dem/contact/hertz_mindlin.hpp"
 #include "packlab/dem/engine.hpp"
+#include "head_on_collision.hpp"
 
 using namespace packlab;
 using namespace packlab::dem;
@@ -35,39 +36,15 @@ ContactGeometry at_rest(double overlap, double radius) {
   return g;
 }
 
-struct Collision {
-  double duration, restitution;
-};
+using test::Collision;
 
+// Two silica spheres of radius 0.5 um starting (almost) touching: no steps spent approaching.
 Collision collide(double restitution, double speed) {
   const double r = 0.5e-6;
-  Packing p;
-  p.box.lo = {-10 * r, -10 * r, -10 * r};
-  p.box.length = {20 * r, 20 * r, 20 * r};
-  p.box.periodic = {false, false, false};
-  p.add({-r - 1e-13, 0, 0}, r);  // starts (almost) touching: no steps spent approaching
-  p.add({r + 1e-13, 0, 0}, r);
-  p.velocity = {{speed, 0, 0}, {-speed, 0, 0}};
   EngineConfig c;
   c.contact_law = "hertz_mindlin";
   c.types = {silica(restitution)};
-  c.threads = 1;
-  c.time_step = 2e-13;
-  Engine e(p, c);
-  long in_contact = 0;
-  bool touched = false;
-  for (long s = 0; s < 10'000'000; ++s) {
-    const auto x = e.packing().position;
-    if (x[1].x - x[0].x < 2 * r) {
-      touched = true;
-      ++in_contact;
-    } else if (touched) {
-      break;
-    }
-    e.run(1);
-  }
-  const auto v = e.packing().velocity;
-  return {static_cast<double>(in_contact) * c.time_step, (v[1].x - v[0].x) / (2 * speed)};
+  return test::collide(test::head_on_pair(r, speed, 2e-13), c, 2e-13);
 }
 
 }  // namespace

@@ -7,6 +7,7 @@
 
 #include "packlab/dem/bond/elastic_bond.hpp"
 #include "packlab/dem/engine.hpp"
+#include "../test_packings.hpp"
 
 using namespace packlab;
 using namespace packlab::dem;
@@ -98,9 +99,7 @@ TEST(ElasticBond, FailsAtTheStrengthAndRelaxesOverOneNanosecond) {
 TEST(ElasticBond, BondedPairOscillatesWithTheAxialStiffness) {
   // Two particles joined at rest length 2r, pulled apart by 1 nm: undamped axial oscillation of
   // period 2 pi sqrt(m_eff / k), k = E A / L0; energy conserved.
-  Packing p;
-  p.box.length = {10 * r, 10 * r, 10 * r};
-  p.box.periodic = {false, false, false};
+  Packing p = test::open_cube(10 * r);
   p.add({4 * r, 5 * r, 5 * r}, r);
   p.add({6 * r + 1e-9, 5 * r, 5 * r}, r);
   p.bonds.add(0, 1, {0, 0, 0}, 0, l0);

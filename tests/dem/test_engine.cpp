@@ -9,6 +9,7 @@
 #include "packlab/dem/relax.hpp"
 #include "packlab/generate/lattice.hpp"
 #include "packlab/generate/random.hpp"
+#include "../test_packings.hpp"
 
 using namespace packlab;
 using namespace packlab::dem;
@@ -22,6 +23,13 @@ Packing dense_random(long n, double phi, std::uint64_t seed) {
   p.radius = 0.5;
   p.volume_fraction = phi;
   return generate::make_random_packing(p, rng);
+}
+
+// FCC, 3 x 3 x 3 cells, radii grown by 1 %: every neighbour pair overlaps by 2 % of a radius.
+Packing compressed_fcc() {
+  Packing p = test::fcc(3);
+  for (auto& r : p.radius) r *= 1.01;
+  return p;
 }
 
 double total_energy(Engine& e) {
@@ -87,15 +95,12 @@ JammedVibration jammed_vibration() {
 
 TEST(Engine, EnergyIsConservedWithoutDamping) {
   // The jammed packing vibrating without damping for 1e5 steps.
-  const JammedVibration j = jammed_vibration();
-  const Packing& p = j.packing;
-  EngineConfig config = j.config;
-  const double static_energy = j.static_energy;
-  config.time_step_safety = 0.05;
-  const EnergyRun r = vibrate(p, config, 100'000, static_energy);
+  JammedVibration j = jammed_vibration();
+  j.config.time_step_safety = 0.05;
+  const EnergyRun r = vibrate(j.packing, j.config, 100'000, j.static_energy);
   // Measured: worst 1.0e-3 (8.6e-4 at the end: an O(dt^2) offset set early, not growing).
   EXPECT_LT(r.worst_error, 5e-3) << "worst " << r.worst_error << " drift " << r.final_error;
-  EXPECT_GT(r.contacts_start, 4 * p.size() / 2);  // jammed: the energy lives in contacts
+  EXPECT_GT(r.contacts_start, 4 * j.packing.size() / 2);  // jammed: the energy lives in contacts
 }
 
 TEST(Engine, StiffnessSumRuleIsStableAtPfcSafety) {
@@ -105,10 +110,8 @@ TEST(Engine, StiffnessSumRuleIsStableAtPfcSafety) {
   // oscillation, not a growth). The per-contact rule at the same safety ignores that a particle
   // has six springs: its step is sqrt(6) times larger, past the stability limit, and the
   // vibration blows up.
-  const JammedVibration j = jammed_vibration();
-  const Packing& p = j.packing;
-  EngineConfig config = j.config;
-  const double static_energy = j.static_energy;
+  const auto [p, jammed_config, static_energy] = jammed_vibration();
+  EngineConfig config = jammed_config;
   config.time_step_safety = 0.8;
   config.time_step_rule = TimeStepRule::stiffness_sum;
   const EnergyRun sum = vibrate(p, config, 20'000, static_energy);
@@ -123,9 +126,7 @@ TEST(Engine, StiffnessSumRuleIsStableAtPfcSafety) {
 TEST(Engine, StiffnessSumRuleCountsEveryContactOfAParticle) {
   // Three equal particles in a row, each pair overlapping: the middle one has two springs,
   // dt = safety sqrt(m / 2k); the per-contact rule gives safety sqrt(m / k).
-  Packing p;
-  p.box.length = {10, 10, 10};
-  p.box.periodic = {false, false, false};
+  Packing p = test::open_cube(10);
   p.add({4.0, 5, 5}, 0.5, 0);
   p.add({4.99, 5, 5}, 0.5, 0);
   p.add({5.98, 5, 5}, 0.5, 0);
@@ -157,10 +158,7 @@ TEST(Engine, EnergyIsConservedWithShearSprings) {
   // rotational vibrations, shear springs that never slide: translation, rotation and the
   // incremental shear law together conserve energy. (Large vibrations that open contacts
   // do lose the shear energy stored in them: that is the model, not round-off.)
-  generate::LatticeParams lp;
-  lp.cells = {3, 3, 3};
-  Packing p = generate::make_lattice(lp);
-  for (auto& r : p.radius) r *= 1.01;
+  Packing p = compressed_fcc();
   EngineConfig config;
   config.types = {Material{1000.0, 500.0, 1e6, 1000.0, 0.0}};
   config.stiffness_rule = StiffnessRule::contact;
@@ -238,9 +236,7 @@ TEST(Engine, TimeStepFromLightestParticleAndStiffestSpring) {
 }
 
 TEST(Engine, FixedParticlesDoNotMove) {
-  Packing p;
-  p.box.length = {4, 4, 4};
-  p.box.periodic = {false, false, false};
+  Packing p = test::open_cube(4);
   p.add({1.0, 2, 2}, 0.5);
   p.add({1.9, 2, 2}, 0.5);
   p.fixed = {1, 0};
@@ -270,10 +266,7 @@ TEST(Engine, ContactAcrossThePeriodicBoundary) {
 
 TEST(Relax, FccLatticeIsAlreadyInEquilibrium) {
   // Compressed by 1 %: every contact carries the same force, balanced by symmetry.
-  generate::LatticeParams lp;
-  lp.cells = {3, 3, 3};
-  Packing p = generate::make_lattice(lp);
-  for (auto& r : p.radius) r *= 1.01;
+  Packing p = compressed_fcc();
   EngineConfig config;
   config.types = {Material{100.0, 10.0, 0.0, 1000.0, 0.7}};
   Engine engine(p, config);

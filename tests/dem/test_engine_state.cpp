@@ -9,6 +9,8 @@
 #include "packlab/core/random.hpp"
 #include "packlab/dem/engine.hpp"
 #include "packlab/generate/random.hpp"
+#include "../test_packings.hpp"
+#include "checkpoint.hpp"
 
 using namespace packlab;
 using namespace packlab::dem;
@@ -40,22 +42,7 @@ EngineConfig two_type_config() {
 
 TEST(EngineState, CheckpointContinuesBitwiseIdentically) {
   // N steps + save + load into a fresh engine + N steps == 2N steps, bit for bit.
-  const Packing p = two_types(600, 4);
-  const EngineConfig config = two_type_config();
-  Engine straight(p, config);
-  straight.run(400);
-  Engine first(p, config);
-  first.run(200);
-  std::stringstream state;
-  first.save_state(state);
-  Engine resumed(p, config);
-  resumed.load_state(state);
-  resumed.run(200);
-  EXPECT_EQ(resumed.step_count(), straight.step_count());
-  EXPECT_EQ(resumed.time(), straight.time());
-  EXPECT_TRUE(resumed.particles().position == straight.particles().position);
-  EXPECT_TRUE(resumed.particles().velocity == straight.particles().velocity);
-  EXPECT_TRUE(resumed.particles().angular_velocity == straight.particles().angular_velocity);
+  test::expect_checkpoint_continues_bitwise(two_types(600, 4), two_type_config(), 200);
 }
 
 TEST(EngineState, DamagedOrForeignCheckpointIsAnInputError) {
@@ -97,9 +84,7 @@ TEST(EngineState, GrowingRadiusScalesMassAtConstantDensity) {
 TEST(EngineState, ContactsRuleFollowsTheLightestTouchingParticle) {
   // A heavy pair touching, and a tiny light particle far away: the step is set by the heavy
   // pair; once the tiny one touches, by the tiny one.
-  Packing p;
-  p.box.length = {20, 20, 20};
-  p.box.periodic = {false, false, false};
+  Packing p = test::open_cube(20);
   p.add({5.0, 5, 5}, 0.5, 0);
   p.add({5.95, 5, 5}, 0.5, 0);
   p.add({15, 15, 15}, 0.01, 1);

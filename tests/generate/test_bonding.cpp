@@ -5,6 +5,7 @@
 #include "packlab/core/error.hpp"
 #include "packlab/generate/bonding.hpp"
 #include "packlab/generate/lattice.hpp"
+#include "../test_packings.hpp"
 
 using namespace packlab;
 using namespace packlab::generate;
@@ -24,9 +25,7 @@ void expect_consistent(const Packing& p) {
 }  // namespace
 
 TEST(Bonding, ContactModelOnFccBondsTheTwelveNeighbours) {
-  LatticeParams lp;
-  lp.cells = {3, 3, 3};
-  Packing p = make_lattice(lp);
+  Packing p = test::fcc(3);
   BondingOptions options;
   options.cutoff_ratio = bonding_cutoff_ratio("contact", 0.01, 1.75);
   add_bonds(p, options);
@@ -38,9 +37,7 @@ TEST(Bonding, ContactModelOnFccBondsTheTwelveNeighbours) {
 TEST(Bonding, BeamCutoffOnFccReachesTheThirdShell) {
   // Shells of FCC at d, sqrt(2) d, sqrt(3) d, 2 d with 12, 6, 24, 12 members: 1.75 d takes
   // the first three (42 neighbours), 1.4 d the first only.
-  LatticeParams lp;
-  lp.cells = {4, 4, 4};
-  Packing p = make_lattice(lp);
+  Packing p = test::fcc(4);
   BondingOptions options;
   options.cutoff_ratio = bonding_cutoff_ratio("elastic", 0.01, 1.75);
   add_bonds(p, options);
@@ -52,9 +49,7 @@ TEST(Bonding, BeamCutoffOnFccReachesTheThirdShell) {
 }
 
 TEST(Bonding, MaterialRuleFromTypesAndNoBondMarker) {
-  LatticeParams lp;
-  lp.cells = {2, 2, 2};
-  Packing p = make_lattice(lp);
+  Packing p = test::fcc(2);
   for (std::size_t k = 0; k < p.size(); k += 2) p.type[k] = 3;
   BondingOptions options;
   options.material_of_types = [](int a, int b) { return a == 3 && b == 3 ? -1 : (a == 3 || b == 3 ? 1 : 0); };

@@ -7,6 +7,7 @@
 #include "packlab/core/error.hpp"
 #include "packlab/generate/fba.hpp"
 #include "packlab/generate/opal.hpp"
+#include "../input_error.hpp"
 
 using namespace packlab;
 using namespace packlab::generate;
@@ -27,14 +28,7 @@ Box cube(double edge, std::array<bool, 3> periodic = {true, true, true}) {
   return b;
 }
 
-std::string error_of(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  return "";
-}
+using test::error_of;
 
 }  // namespace
 

@@ -27,6 +27,14 @@ generate::LsSimulation make_sim(long n, const generate::SizeClasses& classes, do
   return generate::LsSimulation(s.box, s.points, s.unit_radius, p, rng);
 }
 
+// Growth at G = 0.05 up to `target_volume_fraction` (0: until jammed).
+generate::LsParams growing_to(double target_volume_fraction) {
+  generate::LsParams p;
+  p.growth_rate = 0.05;
+  p.target_volume_fraction = target_volume_fraction;
+  return p;
+}
+
 }  // namespace
 
 TEST(LsKernel, CollisionTimeOfHeadOnAndRecedingGrowingSpheres) {
@@ -71,9 +79,7 @@ TEST(LsKernel, ElasticCollisionConservesMomentumAndEnergyAndGrowthSeparates) {
 
 TEST(Ls, ReachesTheTargetVolumeFractionExactlyWithoutOverlap) {
   Random rng(7);
-  generate::LsParams p;
-  p.growth_rate = 0.05;
-  p.target_volume_fraction = 0.55;
+  generate::LsParams p = growing_to(0.55);
   auto sim = make_sim(400, {}, 0.55, p, rng);
   const generate::LsStatus st = sim.run();
   EXPECT_EQ(st.stop, generate::LsStop::target_reached);
@@ -93,9 +99,7 @@ TEST(Ls, BimodalClassesKeepTheirCountsAndSizeRatio) {
   const std::vector<long> counts = c.counts(2000);
   EXPECT_EQ(counts[0] + counts[1], 2000);
   EXPECT_EQ(counts[0], 168);  // the paper's N^(1) = 168 large spheres for N = 2000
-  generate::LsParams p;
-  p.growth_rate = 0.05;
-  p.target_volume_fraction = 0.6;
+  generate::LsParams p = growing_to(0.6);
   auto sim = make_sim(600, c, 0.6, p, rng);
   sim.run();
   const Packing packing = sim.packing();
@@ -120,9 +124,7 @@ TEST(Ls, EquilibriumPressureMatchesCarnahanStarling) {
   // Grow to phi = 0.45, then equilibrate without growth: the reduced pressure PV/NkT of a hard-
   // sphere fluid is (1 + phi + phi^2 - phi^3) / (1 - phi)^3 = 9.38 (Carnahan-Starling, < 1 %).
   Random rng(5);
-  generate::LsParams p;
-  p.growth_rate = 0.05;
-  p.target_volume_fraction = 0.45;
+  generate::LsParams p = growing_to(0.45);
   auto sim = make_sim(500, {}, 0.45, p, rng);
   sim.run();
   p.growth_rate = 0.0;
@@ -142,8 +144,7 @@ TEST(Ls, EquilibriumPressureMatchesCarnahanStarling) {
 
 TEST(Ls, FastCompressionJamsNearRandomClosePacking) {
   Random rng(9);
-  generate::LsParams p;
-  p.growth_rate = 0.05;
+  generate::LsParams p = growing_to(0.0);
   p.max_reduced_pressure = 1e8;
   auto sim = make_sim(500, {}, 0.64, p, rng);
   const generate::LsStatus st = sim.run();
@@ -177,9 +178,7 @@ TEST(Ls, GrowsFromAnExistingPacking) {
   lp.gap = 0.2;  // SC at phi = pi/6 (0.8)^3 = 0.268
   const Packing start = generate::make_lattice(lp);
   Random rng(4);
-  generate::LsParams p;
-  p.growth_rate = 0.05;
-  p.target_volume_fraction = 0.5;
+  generate::LsParams p = growing_to(0.5);
   LsSimulation sim(start, p, rng);
   EXPECT_NEAR(sim.status().volume_fraction, start.volume_fraction(), 1e-12);
   sim.run();

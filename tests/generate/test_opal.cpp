@@ -8,6 +8,7 @@
 #include "packlab/core/error.hpp"
 #include "packlab/generate/fba.hpp"
 #include "packlab/generate/opal.hpp"
+#include "../input_error.hpp"
 
 using namespace packlab;
 using namespace packlab::generate;
@@ -35,6 +36,14 @@ FccPores fcc100(double period) {
   f.diameter = period / std::sqrt(2.0);
   f.orientation = FccOrientation::z100;
   return f;
+}
+
+// [100] pores of period 14 (diameter 9.9 d) in a titania coating 0.8 d thick.
+OpalOptions coated_fcc100() {
+  OpalOptions o;
+  o.fcc = fcc100(14.0);
+  o.coating_thickness = 0.8;
+  return o;
 }
 
 // Distances of x to every pore (minimum image), brute force.
@@ -81,14 +90,7 @@ int expected_material(int ti, int tj) {
   return opal_bond_material::silica;
 }
 
-std::string error_of(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  return "";
-}
+using test::error_of;
 
 }  // namespace
 
@@ -160,9 +162,7 @@ TEST(Opal, UncoatedFccPoresOnALatticeRemoveExactlyEq1) {
 
 TEST(Opal, BondsFollowTheCutoffAcrossPeriodicBoundariesWithMaterials) {
   const Packing in = sc_lattice(14, 14, 20);
-  OpalOptions o;
-  o.fcc = fcc100(14.0);
-  o.coating_thickness = 0.8;
+  const OpalOptions o = coated_fcc100();
   OpalSummary s;
   const Packing out = build_opal(in, o, &s);
   ASSERT_GT(s.coating, 0);
@@ -203,9 +203,7 @@ TEST(Opal, BondsFollowTheCutoffAcrossPeriodicBoundariesWithMaterials) {
 
 TEST(Opal, CoatingIsTheShellOfEq2KeepingOpeningsFree) {
   const Packing in = sc_lattice(14, 14, 30);
-  OpalOptions o;
-  o.fcc = fcc100(14.0);
-  o.coating_thickness = 0.8;
+  const OpalOptions o = coated_fcc100();
   OpalSummary s;
   const Packing out = build_opal(in, o, &s);
   const PoreSet pores = opal_pores(in, o);

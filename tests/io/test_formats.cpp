@@ -44,6 +44,12 @@ class FormatsTest : public ::testing::Test {
     return path;
   }
 
+  // Writes `original` to `name` (the format from the extension) and reads it back.
+  Packing round_trip(const Packing& original, const std::string& name, const WriteOptions& options = {}) const {
+    write_packing(original, file(name), options);
+    return read_packing(file(name));
+  }
+
   fs::path dir_;
 };
 
@@ -96,6 +102,19 @@ void expect_same_geometry(const Packing& expected, const Packing& actual) {
   EXPECT_EQ(expected.type, actual.type);
 }
 
+void expect_same_fields(const Packing& expected, const Packing& actual);
+
+// Geometry, velocities, angular velocities, densities, fixed flags and fields: every
+// per-particle value (what xyz and vtu keep).
+void expect_same_particles(const Packing& expected, const Packing& actual) {
+  expect_same_geometry(expected, actual);
+  EXPECT_EQ(expected.velocity, actual.velocity);
+  EXPECT_EQ(expected.angular_velocity, actual.angular_velocity);
+  EXPECT_EQ(expected.density, actual.density);
+  EXPECT_EQ(expected.fixed, actual.fixed);
+  expect_same_fields(expected, actual);
+}
+
 void expect_same_fields(const Packing& expected, const Packing& actual) {
   ASSERT_EQ(expected.fields.size(), actual.fields.size());
   for (std::size_t f = 0; f < expected.fields.size(); ++f) {
@@ -131,18 +150,12 @@ void expect_input_error(Action&& action, std::initializer_list<std::string> part
 // Extensions
 
 TEST(FormatFromPath, KnowsEveryExtensionAndLammpsPrefixes) {
-  EXPECT_EQ(format_from_path("a.xyz"), Format::xyz);
-  EXPECT_EQ(format_from_path("a.extxyz"), Format::xyz);
-  EXPECT_EQ(format_from_path("dir/a.VTU"), Format::vtu);
-  EXPECT_EQ(format_from_path("a.data"), Format::lammps_data);
-  EXPECT_EQ(format_from_path("a.lmp"), Format::lammps_data);
-  EXPECT_EQ(format_from_path("a.dump"), Format::lammps_dump);
-  EXPECT_EQ(format_from_path("a.lammpstrj"), Format::lammps_dump);
-  EXPECT_EQ(format_from_path("a.csv"), Format::csv);
-  EXPECT_EQ(format_from_path("a.txt"), Format::text);
-  EXPECT_EQ(format_from_path("a.dat"), Format::text);
-  EXPECT_EQ(format_from_path("data.packing"), Format::lammps_data);
-  EXPECT_EQ(format_from_path("dump.relax"), Format::lammps_dump);
+  const std::pair<const char*, Format> cases[] = {
+      {"a.xyz", Format::xyz},          {"a.extxyz", Format::xyz},         {"dir/a.VTU", Format::vtu},
+      {"a.data", Format::lammps_data}, {"a.lmp", Format::lammps_data},    {"a.dump", Format::lammps_dump},
+      {"a.lammpstrj", Format::lammps_dump}, {"a.csv", Format::csv},      {"a.txt", Format::text},
+      {"a.dat", Format::text},         {"data.packing", Format::lammps_data}, {"dump.relax", Format::lammps_dump}};
+  for (const auto& [path, format] : cases) EXPECT_EQ(format_from_path(path), format) << path;
   EXPECT_EQ(format_name(Format::lammps_data), "lammps-data");
 }
 
@@ -157,14 +170,8 @@ TEST(FormatFromPath, UnknownExtensionIsInputError) {
 
 TEST_F(FormatsTest, XyzRoundTripKeepsEveryPerParticleField) {
   const Packing original = random_packing(11);
-  write_packing(original, file("p.xyz"), {.comment = "packlab test \"quoted\" seed=11"});
-  const Packing back = read_packing(file("p.xyz"));
-  expect_same_geometry(original, back);
-  EXPECT_EQ(original.velocity, back.velocity);
-  EXPECT_EQ(original.angular_velocity, back.angular_velocity);
-  EXPECT_EQ(original.density, back.density);
-  EXPECT_EQ(original.fixed, back.fixed);
-  expect_same_fields(original, back);
+  const Packing back = round_trip(original, "p.xyz", {.comment = "packlab test \"quoted\" seed=11"});
+  expect_same_particles(original, back);
   EXPECT_TRUE(back.bonds.empty());
 }
 
@@ -188,14 +195,8 @@ TEST_F(FormatsTest, XyzHeaderIsWhatOvitoExpects) {
 
 TEST_F(FormatsTest, VtuRoundTripKeepsEverythingIncludingBonds) {
   const Packing original = random_packing(12);
-  write_packing(original, file("p.vtu"), {.comment = "a -- comment with <xml> & dashes-"});
-  const Packing back = read_packing(file("p.vtu"));
-  expect_same_geometry(original, back);
-  EXPECT_EQ(original.velocity, back.velocity);
-  EXPECT_EQ(original.angular_velocity, back.angular_velocity);
-  EXPECT_EQ(original.density, back.density);
-  EXPECT_EQ(original.fixed, back.fixed);
-  expect_same_fields(original, back);
+  const Packing back = round_trip(original, "p.vtu", {.comment = "a -- comment with <xml> & dashes-"});
+  expect_same_particles(original, back);
   expect_same_bonds(original.bonds, back.bonds);
 }
 
@@ -243,8 +244,7 @@ TEST_F(FormatsTest, LammpsDataWithoutDensityWritesOne) {
 
 TEST_F(FormatsTest, CsvRoundTripKeepsPositionsRadiiAndTypes) {
   const Packing original = random_packing(14);
-  write_packing(original, file("p.csv"), {.comment = "box is not the box line"});
-  const Packing back = read_packing(file("p.csv"));
+  const Packing back = round_trip(original, "p.csv", {.comment = "box is not the box line"});
   expect_same_geometry(original, back);
   EXPECT_TRUE(back.velocity.empty());
   EXPECT_TRUE(back.fields.empty());
@@ -252,8 +252,7 @@ TEST_F(FormatsTest, CsvRoundTripKeepsPositionsRadiiAndTypes) {
 
 TEST_F(FormatsTest, TextRoundTripKeepsPositionsRadiiAndTypes) {
   const Packing original = random_packing(15);
-  write_packing(original, file("p.txt"), {.comment = "box 1 2 3 is not the box line"});
-  const Packing back = read_packing(file("p.txt"));
+  const Packing back = round_trip(original, "p.txt", {.comment = "box 1 2 3 is not the box line"});
   expect_same_geometry(original, back);
   EXPECT_TRUE(back.velocity.empty());
 }

@@ -12,6 +12,7 @@
 #include "packlab/generate/lattice.hpp"
 #include "packlab/mechanics/oscillatory_shear.hpp"
 #include "packlab/mechanics/shear_calibration.hpp"
+#include "../test_packings.hpp"
 
 using namespace packlab;
 using namespace packlab::mechanics;
@@ -20,16 +21,9 @@ namespace {
 
 constexpr double r0 = 0.25e-6;
 
+// Contact bonds (cutoff 1.01 d) between the touching neighbours of a cubic lattice.
 Packing bonded_lattice(generate::LatticeType type, int cells) {
-  generate::LatticeParams lp;
-  lp.type = type;
-  lp.cells = {cells, cells, cells};
-  lp.radius = r0;
-  Packing p = generate::make_lattice(lp);
-  generate::BondingOptions bo;
-  bo.cutoff_ratio = 1.01;
-  generate::add_bonds(p, bo);
-  return p;
+  return test::bonded_lattice(type, {cells, cells, cells}, r0, 1.01);
 }
 
 // An FCC network with a deterministic fraction of its bonds removed: disordered, non-affine.
@@ -43,13 +37,13 @@ Packing diluted_fcc(double keep) {
   return p;
 }
 
-OscillatoryShearOptions quick_options(const std::string& orientations = "z:x") {
+OscillatoryShearOptions quick_options(int cycles = 3, const std::string& orientations = "z:x") {
   OscillatoryShearOptions o;
   o.stiffness_rule = "contact";
   o.normal_stiffness = 100.0;
   o.shear_stiffness = 10.0;
   o.normal_strength = o.shear_strength = std::numeric_limits<double>::infinity();
-  o.cycles = 3;
+  o.cycles = cycles;
   o.steps_per_cycle = 4000;
   o.samples_per_cycle = 40;
   o.orientations = shear_orientations(orientations);
@@ -129,9 +123,8 @@ TEST(OscillatoryShear, SetupHasPlatesFromThePeriodicImagesAndBondsAcrossTheBound
 // gamma = U / (n d):  G = k_s n / ((2n + 1) d)  (bulk limit k_s / (2d); k_n plays no part).
 TEST(OscillatoryShear, SimpleCubicNetworkMatchesTheSpringNetworkClosedForm) {
   const Packing sc = bonded_lattice(generate::LatticeType::sc, 4);
-  OscillatoryShearOptions o = quick_options("all");
+  OscillatoryShearOptions o = quick_options(1, "all");
   o.regions = 1;
-  o.cycles = 1;
   o.steps_per_cycle = 16000;  // 4000 leaves the plate force ringing by a few per cent
   const OscillatoryShearResult r = run_oscillatory_shear(sc, o);
   const double d = 2.0 * r0, n = 4.0;
@@ -156,8 +149,7 @@ TEST(OscillatoryShear, StorageModulusIsLinearInTheStiffnessAtAFixedRatio) {
   // squared time step (dt halves, exactly in floating point), so the run is the same in steps,
   // every displacement the same and every force four times larger: G' x 4 to round-off.
   const Packing p = diluted_fcc(0.7);
-  OscillatoryShearOptions o = quick_options();
-  o.cycles = 2;
+  OscillatoryShearOptions o = quick_options(2);
   const OscillatoryShearResult a = run_oscillatory_shear(p, o);
   o.normal_stiffness *= 4.0;
   o.shear_stiffness *= 4.0;
@@ -172,8 +164,7 @@ TEST(OscillatoryShear, StorageModulusIsLinearInTheStiffnessAtAFixedRatio) {
 
 TEST(OscillatoryShear, QuasiStaticSlowerCycleGivesTheSameModulusAndNoPhaseLag) {
   const Packing p = diluted_fcc(0.7);
-  OscillatoryShearOptions o = quick_options();
-  o.cycles = 2;
+  OscillatoryShearOptions o = quick_options(2);
   const OscillatoryShearResult fast = run_oscillatory_shear(p, o);
   o.steps_per_cycle *= 2;
   const OscillatoryShearResult slow = run_oscillatory_shear(p, o);
@@ -189,8 +180,7 @@ TEST(OscillatoryShear, QuasiStaticSlowerCycleGivesTheSameModulusAndNoPhaseLag) {
 
 TEST(OscillatoryShear, CalibrationFindsTheNormalStiffnessOfATargetModulus) {
   const Packing p = diluted_fcc(0.7);
-  OscillatoryShearOptions o = quick_options();
-  o.cycles = 1;
+  OscillatoryShearOptions o = quick_options(1);
   o.normal_stiffness = 100.0;
   const double g100 = run_oscillatory_shear(p, o).storage_modulus_mean;
   const double target = 1.37 * g100;  // G' linear in k_n: the answer is k_n = 137 N/m

@@ -14,6 +14,7 @@
 #include "packlab/generate/lattice.hpp"
 #include "packlab/mechanics/opal_materials.hpp"
 #include "packlab/mechanics/uniaxial_compression.hpp"
+#include "../test_packings.hpp"
 
 using namespace packlab;
 using namespace packlab::mechanics;
@@ -38,15 +39,7 @@ UniaxialCompressionOptions options(double strength = inf) {
 
 // Simple cubic column, 3 x 3 cells across (periodic), `layers` levels, elastic bonds 1.75 d.
 Packing sc_column(int layers) {
-  generate::LatticeParams lp;
-  lp.type = generate::LatticeType::sc;
-  lp.cells = {3, 3, layers};
-  lp.radius = r;
-  Packing p = generate::make_lattice(lp);
-  generate::BondingOptions bo;
-  bo.cutoff_ratio = 1.75;
-  generate::add_bonds(p, bo);
-  return p;
+  return test::bonded_lattice(generate::LatticeType::sc, {3, 3, layers}, r, 1.75);
 }
 
 }  // namespace

@@ -9,14 +9,13 @@
 namespace packlab::mechanics {
 
 std::vector<dem::Material> opal_particle_types(const OpalMaterials& m) {
-  dem::Material silica;
-  silica.youngs_modulus = m.silica_youngs_modulus;
-  silica.poisson_ratio = m.silica_poisson_ratio;
-  silica.density = m.silica_density;
-  silica.restitution = m.restitution;
-  silica.friction = m.friction;
-  silica.rolling_friction = m.rolling_friction;
-  silica.damping = m.damping;
+  const dem::Material silica{.friction = m.friction,
+                             .density = m.silica_density,
+                             .damping = m.damping,
+                             .youngs_modulus = m.silica_youngs_modulus,
+                             .poisson_ratio = m.silica_poisson_ratio,
+                             .restitution = m.restitution,
+                             .rolling_friction = m.rolling_friction};
   dem::Material titania = silica;
   titania.youngs_modulus = m.titania_youngs_modulus;
   titania.poisson_ratio = m.titania_poisson_ratio;

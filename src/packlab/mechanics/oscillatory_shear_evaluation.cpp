@@ -7,6 +7,7 @@
 #include <utility>
 
 #include "packlab/mechanics/oscillatory_shear.hpp"
+#include "packlab/mechanics/row_columns.hpp"
 
 namespace packlab::mechanics {
 
@@ -80,56 +81,33 @@ ShearCycle evaluate_cycle(const std::vector<ShearSample>& samples, int cycle) {
 }
 
 Columns shear_sample_columns(const std::vector<ShearSample>& samples, int regions) {
-  std::vector<double> cycle, step, time, phase, strain, stress, plate, kinetic, strain_energy;
-  std::vector<std::vector<double>> region(static_cast<std::size_t>(std::max(regions, 0)));
-  for (const auto& s : samples) {
-    cycle.push_back(s.cycle);
-    step.push_back(static_cast<double>(s.step));
-    time.push_back(s.time);
-    phase.push_back(s.phase);
-    strain.push_back(s.strain);
-    stress.push_back(s.stress);
-    plate.push_back(s.plate_stress);
-    for (std::size_t k = 0; k < region.size() && k < s.region_stress.size(); ++k) region[k].push_back(s.region_stress[k]);
-    kinetic.push_back(s.kinetic_energy);
-    strain_energy.push_back(s.strain_energy);
-  }
+  using S = ShearSample;
   Columns t;
-  t.add("cycle", std::move(cycle), Column::Kind::integer);
-  t.add("step", std::move(step), Column::Kind::integer);
-  t.add("time", std::move(time), Column::Kind::real, 10);
-  t.add("phase", std::move(phase), Column::Kind::real, 10);
-  t.add("strain", std::move(strain), Column::Kind::real, 10);
-  t.add("stress", std::move(stress), Column::Kind::real, 10);
-  t.add("plate_stress", std::move(plate), Column::Kind::real, 10);
+  add_row_column(t, "cycle", samples, [](const S& s) { return s.cycle; }, Column::Kind::integer);
+  add_row_column(t, "step", samples, [](const S& s) { return s.step; }, Column::Kind::integer);
+  add_real_row_columns(t, samples,
+                       {{"time", &S::time}, {"phase", &S::phase}, {"strain", &S::strain}, {"stress", &S::stress},
+                        {"plate_stress", &S::plate_stress}},
+                       10);
+  std::vector<std::vector<double>> region(static_cast<std::size_t>(std::max(regions, 0)));
+  for (const auto& s : samples)
+    for (std::size_t k = 0; k < region.size() && k < s.region_stress.size(); ++k) region[k].push_back(s.region_stress[k]);
   for (std::size_t k = 0; k < region.size(); ++k)
     t.add("region_" + std::to_string(k), std::move(region[k]), Column::Kind::real, 10);
-  t.add("kinetic_energy", std::move(kinetic), Column::Kind::real, 6);
-  t.add("strain_energy", std::move(strain_energy), Column::Kind::real, 6);
+  add_real_row_columns(t, samples, {{"kinetic_energy", &S::kinetic_energy}, {"strain_energy", &S::strain_energy}}, 6);
   return t;
 }
 
 Columns shear_cycle_columns(const std::vector<ShearCycle>& cycles) {
-  std::vector<double> cycle, strain_amplitude, stress_amplitude, complex_modulus, phase_angle, storage, loss, plate;
-  for (const auto& c : cycles) {
-    cycle.push_back(c.cycle);
-    strain_amplitude.push_back(c.strain_amplitude);
-    stress_amplitude.push_back(c.stress_amplitude);
-    complex_modulus.push_back(c.complex_modulus);
-    phase_angle.push_back(c.phase_angle);
-    storage.push_back(c.storage_modulus);
-    loss.push_back(c.loss_modulus);
-    plate.push_back(c.plate_storage_modulus);
-  }
+  using C = ShearCycle;
   Columns t;
-  t.add("cycle", std::move(cycle), Column::Kind::integer);
-  t.add("strain_amplitude", std::move(strain_amplitude), Column::Kind::real, 10);
-  t.add("stress_amplitude", std::move(stress_amplitude), Column::Kind::real, 10);
-  t.add("complex_modulus", std::move(complex_modulus), Column::Kind::real, 10);
-  t.add("phase_angle", std::move(phase_angle), Column::Kind::real, 10);
-  t.add("storage_modulus", std::move(storage), Column::Kind::real, 10);
-  t.add("loss_modulus", std::move(loss), Column::Kind::real, 10);
-  t.add("plate_storage_modulus", std::move(plate), Column::Kind::real, 10);
+  add_row_column(t, "cycle", cycles, [](const C& c) { return c.cycle; }, Column::Kind::integer);
+  add_real_row_columns(t, cycles,
+                       {{"strain_amplitude", &C::strain_amplitude}, {"stress_amplitude", &C::stress_amplitude},
+                        {"complex_modulus", &C::complex_modulus}, {"phase_angle", &C::phase_angle},
+                        {"storage_modulus", &C::storage_modulus}, {"loss_modulus", &C::loss_modulus},
+                        {"plate_storage_modulus", &C::plate_storage_modulus}},
+                       10);
   return t;
 }
 

@@ -99,13 +99,11 @@ void validate(const OscillatoryShearOptions& o) {
 dem::EngineConfig shear_engine_config(const OscillatoryShearOptions& o) {
   dem::EngineConfig c;
   c.contact_law = "linear";
-  dem::Material t;
-  t.normal_stiffness = o.normal_stiffness;
-  t.shear_stiffness = o.shear_stiffness;
-  t.friction = o.friction;
-  t.density = o.density;
-  t.damping = o.damping;
-  c.types = {t};
+  c.types = {dem::Material{.normal_stiffness = o.normal_stiffness,
+                            .shear_stiffness = o.shear_stiffness,
+                            .friction = o.friction,
+                            .density = o.density,
+                            .damping = o.damping}};
   c.stiffness_rule = dem::stiffness_rule_from_name(o.stiffness_rule);
   // The bond acts with the contact stiffness of the pair (PFC: the linear contact law extended
   // into tension), i.e. the particle stiffnesses in series under the particle rule.

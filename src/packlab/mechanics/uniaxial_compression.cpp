@@ -9,32 +9,19 @@
 #include <cmath>
 
 #include "packlab/core/error.hpp"
+#include "packlab/mechanics/row_columns.hpp"
 
 namespace packlab::mechanics {
 
 Columns curve_columns(const std::vector<UniaxialCompressionPoint>& curve) {
-  std::vector<double> step, time, displacement, strain, force, stress, kinetic, strain_energy, broken;
-  for (const auto& p : curve) {
-    step.push_back(static_cast<double>(p.step));
-    time.push_back(p.time);
-    displacement.push_back(p.displacement);
-    strain.push_back(p.strain);
-    force.push_back(p.force);
-    stress.push_back(p.stress);
-    kinetic.push_back(p.kinetic_energy);
-    strain_energy.push_back(p.strain_energy);
-    broken.push_back(static_cast<double>(p.broken_bonds));
-  }
+  using P = UniaxialCompressionPoint;
   Columns t;
-  t.add("step", std::move(step), Column::Kind::integer);
-  t.add("time", std::move(time));
-  t.add("displacement", std::move(displacement));
-  t.add("strain", std::move(strain));
-  t.add("force", std::move(force));
-  t.add("stress", std::move(stress));
-  t.add("kinetic_energy", std::move(kinetic));
-  t.add("strain_energy", std::move(strain_energy));
-  t.add("broken_bonds", std::move(broken), Column::Kind::integer);
+  add_row_column(t, "step", curve, [](const P& p) { return p.step; }, Column::Kind::integer);
+  add_real_row_columns(t, curve,
+                       {{"time", &P::time}, {"displacement", &P::displacement}, {"strain", &P::strain},
+                        {"force", &P::force}, {"stress", &P::stress}, {"kinetic_energy", &P::kinetic_energy},
+                        {"strain_energy", &P::strain_energy}});
+  add_row_column(t, "broken_bonds", curve, [](const P& p) { return p.broken_bonds; }, Column::Kind::integer);
   return t;
 }
 

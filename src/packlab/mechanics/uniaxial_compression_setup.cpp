@@ -13,30 +13,29 @@ namespace packlab::mechanics {
 
 namespace {
 
-// A: the periodic cross-section Lx Ly, or the x-y extent of the spheres along open sides.
-double cross_section_area(const Packing& model, const std::string& sides) {
-  const std::size_t n = model.size();
-  if (sides == "periodic" && model.box.periodic[0] && model.box.periodic[1]) return model.box.length.x * model.box.length.y;
-  double x0 = std::numeric_limits<double>::infinity(), x1 = -x0, y0 = x0, y1 = -x0;
-  for (std::size_t k = 0; k < n; ++k) {
-    const Vec3& p = model.position[k];
+// The width of the specimen along x or y: the box's along a periodic side, the spheres' along an
+// open one.
+double width(const Packing& model, int axis) {
+  const bool periodic = model.box.periodic[static_cast<std::size_t>(axis)];
+  double lo = std::numeric_limits<double>::infinity(), hi = -lo;
+  for (std::size_t k = 0; k < model.size(); ++k) {
+    const double x = model.position[k][axis];
     const double r = model.radius[k];
-    if (model.box.periodic[0]) {
-      x0 = model.box.lo.x;
-      x1 = model.box.lo.x + model.box.length.x;
+    if (periodic) {
+      lo = model.box.lo[axis];
+      hi = model.box.lo[axis] + model.box.length[axis];
     } else {
-      x0 = std::min(x0, p.x - r);
-      x1 = std::max(x1, p.x + r);
-    }
-    if (model.box.periodic[1]) {
-      y0 = model.box.lo.y;
-      y1 = model.box.lo.y + model.box.length.y;
-    } else {
-      y0 = std::min(y0, p.y - r);
-      y1 = std::max(y1, p.y + r);
+      lo = std::min(lo, x - r);
+      hi = std::max(hi, x + r);
     }
   }
-  return (x1 - x0) * (y1 - y0);
+  return hi - lo;
+}
+
+// A: the periodic cross-section Lx Ly, or the x-y extent of the spheres along open sides.
+double cross_section_area(const Packing& model, const std::string& sides) {
+  if (sides == "periodic" && model.box.periodic[0] && model.box.periodic[1]) return model.box.length.x * model.box.length.y;
+  return width(model, 0) * width(model, 1);
 }
 
 }  // namespace
