@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <istream>
 #include <ostream>
+#include <sstream>
 #include <string>
 #include <type_traits>
 #include <vector>
@@ -52,6 +53,41 @@ inline void read_string(std::istream& in, std::string& s, const char* what) {
   std::vector<char> chars;
   read_vector(in, chars, what, 4096);
   s.assign(chars.begin(), chars.end());
+}
+
+// FNV-1a, 64 bit: a checksum against damaged files (not against tampering).
+inline std::uint64_t fnv1a(const std::string& bytes) {
+  std::uint64_t hash = 0xcbf29ce484222325ULL;
+  for (unsigned char c : bytes) {
+    hash ^= c;
+    hash *= 0x100000001b3ULL;
+  }
+  return hash;
+}
+
+// A checksummed section: its size, its hash and the bytes `body` writes. read_checked() gives
+// those bytes back only when the hash matches, so a flipped byte is an InputError, never a
+// crash or a silently different state.
+template <class Body>
+void write_checked(std::ostream& out, Body&& body) {
+  std::ostringstream section;
+  body(static_cast<std::ostream&>(section));
+  const std::string bytes = section.str();
+  write(out, static_cast<std::uint64_t>(bytes.size()));
+  write(out, fnv1a(bytes));
+  out.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
+}
+
+inline std::istringstream read_checked(std::istream& in, const char* what, std::uint64_t max_size = 1ULL << 36) {
+  std::uint64_t size = 0, hash = 0;
+  read(in, size, what);
+  read(in, hash, what);
+  if (size > max_size) fail_input(std::string("checkpoint is damaged: implausible size of ") + what);
+  std::string bytes(size, '\0');
+  if (size > 0 && !in.read(bytes.data(), static_cast<std::streamsize>(size)))
+    fail_input(std::string("checkpoint is truncated while reading ") + what);
+  if (fnv1a(bytes) != hash) fail_input(std::string("checkpoint is damaged: checksum mismatch in ") + what);
+  return std::istringstream(std::move(bytes));
 }
 
 }  // namespace packlab::binary

@@ -16,7 +16,7 @@ namespace packlab::generate {
 
 namespace {
 
-constexpr std::uint64_t vem_checkpoint_magic = 0x3330504B434D4556ULL;  // "VEMCKP03"
+constexpr std::uint64_t vem_checkpoint_magic = 0x3430504B434D4556ULL;  // "VEMCKP04": checksummed
 constexpr int structural_type = particle_type::structural;
 constexpr int void_type = particle_type::void_particle;
 
@@ -364,6 +364,11 @@ bool Vem::run(long max_steps) {
 
 void Vem::save_checkpoint(std::ostream& out) const {
   binary::write(out, vem_checkpoint_magic);
+  binary::write_checked(out, [&](std::ostream& section) { save_state(section); });
+  if (!out) fail_input("checkpoint: write failed");
+}
+
+void Vem::save_state(std::ostream& out) const {
   write_params(out, params_);
   std::ostringstream rng_state;
   rng_state << rng_.engine();
@@ -387,13 +392,14 @@ void Vem::save_checkpoint(std::ostream& out) const {
   binary::write(out, seconds_);
   binary::write_vector(out, curve_);
   engine_->save_state(out);
-  if (!out) fail_input("checkpoint: write failed");
 }
 
-std::unique_ptr<Vem> Vem::resume(std::istream& in, int threads) {
+std::unique_ptr<Vem> Vem::resume(std::istream& checkpoint, int threads) {
   std::uint64_t magic = 0;
-  binary::read(in, magic, "header");
-  if (magic != vem_checkpoint_magic) fail_input("checkpoint: not a packlab VEM checkpoint (bad header)");
+  binary::read(checkpoint, magic, "header");
+  if (magic != vem_checkpoint_magic)
+    fail_input("checkpoint: not a packlab VEM checkpoint of this version (bad header)");
+  std::istringstream in = binary::read_checked(checkpoint, "the VEM state");
   VemParams params = read_params(in);
   if (threads > 0) params.threads = threads;
   std::unique_ptr<Vem> vem(new Vem(params, ResumeTag{}));

@@ -44,7 +44,8 @@
 //
 // Checkpoints: save_checkpoint() writes the whole state (parameters, random generator, stage,
 // cycle, relaxation progress, the curve and the engine state); a Vem built from it continues
-// bit for bit as the saved one would have (same thread count).
+// bit for bit as the saved one would have (same thread count). The state is checksummed: a
+// damaged file is an InputError, never a crash or a silently different run.
 #pragma once
 
 #include <cstdint>
@@ -169,6 +170,7 @@ class Vem {
 
  private:
   struct ResumeTag {};
+  void save_state(std::ostream& out) const;  // the checksummed part of save_checkpoint()
   Vem(const VemParams& params, ResumeTag);
   void build_engine();
   void apply_mass_scaling();
