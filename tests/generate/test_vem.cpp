@@ -12,6 +12,7 @@
 #include "../cli/cli_runner.hpp"
 #include "packlab/core/error.hpp"
 #include "packlab/generate/vem.hpp"
+#include "small_vem.hpp"
 
 using namespace packlab;
 using namespace packlab::generate;
@@ -20,15 +21,8 @@ namespace {
 
 // A small, fast case: 120 structural and 60 void particles (n = 0.5), voids grown by 0.05 r_S.
 VemParams tiny() {
-  VemParams p;
-  p.structural = 120;
-  p.voids = 60;
-  p.phi_s = 0.35;
-  p.void_radius_ratio = 0.05;
-  p.max_q = 0.4;
-  p.relax_max_steps = 400;
+  VemParams p = test::small_vem(120, 60, 0.35, 0.4, 400);
   p.relax_check_interval = 25;
-  p.threads = 1;
   p.seed = 3;
   return p;
 }

@@ -7,20 +7,13 @@
 #include "packlab/core/binary_io.hpp"
 #include "packlab/core/error.hpp"
 #include "packlab/generate/vem.hpp"
+#include "small_vem.hpp"
 
 using namespace packlab;
 using namespace packlab::generate;
 
 TEST(VemCheckpoint, EveryFlippedByteIsAnInputError) {
-  VemParams p;
-  p.structural = 40;
-  p.voids = 20;
-  p.phi_s = 0.3;
-  p.void_radius_ratio = 0.05;
-  p.max_q = 0.2;
-  p.relax_max_steps = 200;
-  p.threads = 1;
-  Vem vem(p);
+  Vem vem(test::small_vem(40, 20, 0.3, 0.2, 200));
   vem.run(300);
   std::ostringstream out;
   vem.save_checkpoint(out);
