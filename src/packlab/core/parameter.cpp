@@ -7,7 +7,8 @@
 namespace packlab {
 
 std::string Range::text(std::string_view unit) const {
-  const std::string u = unit.empty() ? "" : " " + std::string(unit);
+  std::string u;  // (" " + unit trips GCC 12's -Wrestrict false positive)
+  if (!unit.empty()) u.append(" ").append(unit);
   const bool low = std::isfinite(min), high = std::isfinite(max);
   std::string out;
   if (low && high)
