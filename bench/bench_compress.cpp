@@ -93,8 +93,7 @@ int main(int argc, char** argv) {
   dem::EngineConfig config;
   config.contact_law = "hertz_mindlin";
   config.types = setup.options.types;
-  config.bond_law = "elastic";
-  config.elastic_bond_materials = setup.options.bond_materials;
+  config.bond_materials = setup.options.bond_materials;
   config.threads = threads;
 
   // Memory: an engine with the bonds, and one without.

@@ -35,7 +35,7 @@ int main(int argc, char** argv) {
     packing.add({x, y, z}, radius);
   }
   dem::EngineConfig config;
-  config.types = {dem::TypeParams{kn, ks, mu, density, 0.7}};
+  config.types = {dem::Material{kn, ks, mu, density, 0.7}};
   config.stiffness_rule = dem::StiffnessRule::contact;
   config.time_step = 0.2 * std::sqrt(mass / kn);
   config.skin_ratio = 0.2;  // 0.1 d, as the LAMMPS script's neighbor skin

@@ -2,8 +2,26 @@
 significant digits), so that results computed in Python feed the same ``packlab.plot``
 figures as those of the command line."""
 
+import contextlib
 import os
 import tempfile
+
+
+@contextlib.contextmanager
+def atomic_output(path, prefix):
+    """Yields a temporary file name next to ``path`` (``prefix`` + random part + the suffix of
+    ``path``) to write to; when the block completes, the file replaces ``path`` in one rename,
+    and in any case no temporary file is left behind. Readers never see a half-written file."""
+    path = os.fspath(path)
+    folder = os.path.dirname(os.path.abspath(path))
+    fd, tmp = tempfile.mkstemp(prefix=prefix, suffix=os.path.splitext(path)[1], dir=folder)
+    os.close(fd)
+    try:
+        yield tmp
+        os.replace(tmp, path)
+    finally:
+        if os.path.exists(tmp):
+            os.remove(tmp)
 
 
 def write_table(path, columns, comment=None):
@@ -30,25 +48,29 @@ def write_table(path, columns, comment=None):
             return str(v)
         return f"{float(v):.17g}"
 
-    folder = os.path.dirname(os.path.abspath(path))
-    fd, tmp = tempfile.mkstemp(prefix=".table-", suffix=".csv", dir=folder)
-    try:
-        with os.fdopen(fd, "w") as f:
-            if comment:
-                for line in str(comment).splitlines():
-                    f.write(f"# {line}\n")
-            f.write(",".join(names) + "\n")
-            for row in zip(*arrays):
-                f.write(",".join(fmt(v) for v in row) + "\n")
-        os.replace(tmp, path)
-    finally:
-        if os.path.exists(tmp):
-            os.remove(tmp)
+    with atomic_output(path, ".table-") as tmp, open(tmp, "w") as f:
+        if comment:
+            for line in str(comment).splitlines():
+                f.write(f"# {line}\n")
+        f.write(",".join(names) + "\n")
+        for row in zip(*arrays):
+            f.write(",".join(fmt(v) for v in row) + "\n")
     return path
 
 
 def read_table(path):
     """Reads a packlab CSV table into a dict of NumPy arrays (text columns stay lists)."""
-    from .plot import read_csv
+    import numpy as np
 
-    return read_csv(path)
+    with open(path) as f:
+        lines = [line for line in f if line.strip() and not line.startswith("#")]
+    header = lines[0].strip().split(",")
+    rows = [line.strip().split(",") for line in lines[1:]]
+    columns = {}
+    for k, name in enumerate(header):
+        values = [row[k] for row in rows]
+        try:
+            columns[name] = np.array([float(v) for v in values])
+        except ValueError:
+            columns[name] = values
+    return columns

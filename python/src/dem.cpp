@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "common.hpp"
+#include "packlab/core/error.hpp"
 #include "packlab/dem/engine.hpp"
 #include "packlab/dem/relax.hpp"
 
@@ -16,7 +17,7 @@ namespace {
 using dem::Diagnostics;
 using dem::Engine;
 using dem::EngineConfig;
-using dem::TypeParams;
+using dem::Material;
 
 // Diagnostics of a run as a dict of arrays: the columns of `packlab relax --log`.
 py::dict history_columns(const std::vector<Diagnostics>& history) {
@@ -79,7 +80,7 @@ dem::RelaxResult relax_engine(Engine& engine, long steps, double tolerance, long
 
 EngineConfig make_config(const std::string& contact_law, double normal_stiffness, double shear_stiffness,
                          double friction, double density, double damping, double youngs_modulus, double poisson_ratio,
-                         double restitution, double rolling_friction, std::optional<std::vector<TypeParams>> materials,
+                         double restitution, double rolling_friction, std::optional<std::vector<Material>> materials,
                          const std::string& stiffness_rule, double time_step, double time_step_safety,
                          const std::string& time_step_rule, double max_time_step, double skin_ratio,
                          const std::string& bond_law,
@@ -89,7 +90,7 @@ EngineConfig make_config(const std::string& contact_law, double normal_stiffness
   if (materials) {
     c.types = *materials;
   } else {
-    TypeParams t;
+    Material t;
     t.normal_stiffness = normal_stiffness;
     t.shear_stiffness = shear_stiffness;
     t.friction = friction;
@@ -107,7 +108,8 @@ EngineConfig make_config(const std::string& contact_law, double normal_stiffness
   c.time_step_rule = dem::time_step_rule_from_name(time_step_rule);
   c.max_time_step = max_time_step;
   c.skin_ratio = skin_ratio;
-  c.bond_law = bond_law;
+  if (bond_law != dem::ContactBond::name)
+    packlab::fail_input(fmt::format("bond_law = {}: Engine takes '{}' bonds (BondMaterial)", bond_law, dem::ContactBond::name));
   if (bond_materials) c.bond_materials = *bond_materials;
   c.threads = threads;
   return c;
@@ -131,27 +133,27 @@ threads: OpenMP threads (0 = all cores); results are reproducible for a fixed co
 }  // namespace
 
 void bind_dem(py::module_& m) {
-  py::class_<TypeParams>(m, "Material", "Contact parameters of one particle type (see Engine).")
+  py::class_<Material>(m, "Material", "Contact parameters of one particle type (see Engine).")
       .def(py::init([](double normal_stiffness, double shear_stiffness, double friction, double density,
                        double damping, double youngs_modulus, double poisson_ratio, double restitution,
                        double rolling_friction) {
-             return TypeParams{normal_stiffness, shear_stiffness, friction,      density,         damping,
+             return Material{normal_stiffness, shear_stiffness, friction,      density,         damping,
                                youngs_modulus,   poisson_ratio,   restitution, rolling_friction};
            }),
            py::kw_only(), py::arg("normal_stiffness") = 1e2, py::arg("shear_stiffness") = 1e1,
            py::arg("friction") = 0.0, py::arg("density") = 1e3, py::arg("damping") = 0.7,
            py::arg("youngs_modulus") = 0.0, py::arg("poisson_ratio") = 0.25, py::arg("restitution") = 1.0,
            py::arg("rolling_friction") = 0.0)
-      .def_readwrite("normal_stiffness", &TypeParams::normal_stiffness, "k_n [N/m]")
-      .def_readwrite("shear_stiffness", &TypeParams::shear_stiffness, "k_s [N/m]")
-      .def_readwrite("friction", &TypeParams::friction, "Coulomb coefficient mu [-]")
-      .def_readwrite("density", &TypeParams::density, "[kg/m^3]")
-      .def_readwrite("damping", &TypeParams::damping, "local damping alpha [-]")
-      .def_readwrite("youngs_modulus", &TypeParams::youngs_modulus, "E [Pa] (Hertz-Mindlin)")
-      .def_readwrite("poisson_ratio", &TypeParams::poisson_ratio, "nu [-] (Hertz-Mindlin)")
-      .def_readwrite("restitution", &TypeParams::restitution, "e [-] (Hertz-Mindlin)")
-      .def_readwrite("rolling_friction", &TypeParams::rolling_friction, "mu_r [-] (Hertz-Mindlin)")
-      .def("__repr__", [](const TypeParams& t) {
+      .def_readwrite("normal_stiffness", &Material::normal_stiffness, "k_n [N/m]")
+      .def_readwrite("shear_stiffness", &Material::shear_stiffness, "k_s [N/m]")
+      .def_readwrite("friction", &Material::friction, "Coulomb coefficient mu [-]")
+      .def_readwrite("density", &Material::density, "[kg/m^3]")
+      .def_readwrite("damping", &Material::damping, "local damping alpha [-]")
+      .def_readwrite("youngs_modulus", &Material::youngs_modulus, "E [Pa] (Hertz-Mindlin)")
+      .def_readwrite("poisson_ratio", &Material::poisson_ratio, "nu [-] (Hertz-Mindlin)")
+      .def_readwrite("restitution", &Material::restitution, "e [-] (Hertz-Mindlin)")
+      .def_readwrite("rolling_friction", &Material::rolling_friction, "mu_r [-] (Hertz-Mindlin)")
+      .def("__repr__", [](const Material& t) {
         return fmt::format("Material(normal_stiffness={:g}, shear_stiffness={:g}, friction={:g}, density={:g}, "
                            "damping={:g})",
                            t.normal_stiffness, t.shear_stiffness, t.friction, t.density, t.damping);
@@ -198,7 +200,7 @@ returns its current state. Keywords:
       .def(py::init([](const Packing& packing, const std::string& contact_law, double normal_stiffness,
                        double shear_stiffness, double friction, double density, double damping, double youngs_modulus,
                        double poisson_ratio, double restitution, double rolling_friction,
-                       std::optional<std::vector<TypeParams>> materials, const std::string& stiffness_rule,
+                       std::optional<std::vector<Material>> materials, const std::string& stiffness_rule,
                        double time_step, double time_step_safety, const std::string& time_step_rule,
                        double max_time_step, double skin_ratio, const std::string& bond_law,
                        std::optional<std::vector<dem::ContactBond::Params>> bond_materials, int threads) {
@@ -338,7 +340,7 @@ force (M x 3, force on j [N]).)doc")
       [](const Packing& packing, double normal_stiffness, double shear_stiffness, double friction, double damping,
          double density, const std::string& stiffness_rule, double time_step, double time_step_safety, long steps,
          double tolerance, long check_interval, int threads, const std::string& contact_law,
-         std::optional<std::vector<TypeParams>> materials, py::object progress, double progress_interval) {
+         std::optional<std::vector<Material>> materials, py::object progress, double progress_interval) {
         const EngineConfig c =
             make_config(contact_law, normal_stiffness, shear_stiffness, friction, density, damping, 0.0, 0.25, 1.0,
                         0.0, materials, stiffness_rule, time_step, time_step_safety, "global", 0.0, 0.2, "contact",

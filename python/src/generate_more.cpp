@@ -78,7 +78,7 @@ void bind_generate_later(py::module_& m) {
          int blowup_steps, double void_radius_ratio, double contact_eps, double relax_tolerance, long relax_max_steps,
          double void_mass_scaling, double stop_strain_energy, const std::string& time_step_rule,
          double time_step_safety, double skin,
-         std::optional<dem::TypeParams> structural_material, std::optional<dem::TypeParams> void_material,
+         std::optional<dem::Material> structural_material, std::optional<dem::Material> void_material,
          py::object progress, double progress_interval) {
         generate::VemParams p;
         p.structural = structural;

@@ -7,7 +7,7 @@
 #include <numbers>
 #include <sstream>
 
-#include "packlab/dem/bond_law.hpp"
+#include "packlab/dem/bond/elastic_bond.hpp"
 #include "packlab/dem/engine.hpp"
 
 using namespace packlab;
@@ -35,9 +35,8 @@ Packing pulled_pair() {
 // One elastic bond material (silica), steps of 1 ps, one thread.
 EngineConfig elastic_bond_config() {
   EngineConfig c;
-  c.types = {TypeParams{}};
-  c.bond_law = "elastic";
-  c.elastic_bond_materials = {ElasticBond::Params{E, nu, sigma_max, inf, 1.0, 1e-9}};
+  c.types = {Material{}};
+  c.bond_materials = BondMaterialList<ElasticBond>{{E, nu, sigma_max, inf, 1.0, 1e-9}};
   c.threads = 1;
   c.time_step = 1e-12;
   return c;

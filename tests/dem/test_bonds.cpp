@@ -29,9 +29,9 @@ Packing bonded_pair(double gap, Vec3 box = {10, 10, 10}, std::array<bool, 3> per
 
 EngineConfig bond_config(double normal_strength, double shear_strength, double damping = 0.0) {
   EngineConfig c;
-  c.types = {TypeParams{1000.0, 100.0, 0.5, 1000.0, damping}};
+  c.types = {Material{1000.0, 100.0, 0.5, 1000.0, damping}};
   c.stiffness_rule = StiffnessRule::contact;
-  c.bond_materials = {ContactBond::Params{800.0, 80.0, normal_strength, shear_strength}};
+  c.bond_materials = BondMaterialList<ContactBond>{{800.0, 80.0, normal_strength, shear_strength}};
   c.threads = 1;
   return c;
 }
@@ -153,9 +153,9 @@ TEST(ContactBond, CheckpointWithBondsContinuesBitwise) {
 TEST(ContactBond, BondsWithoutParametersAreAnInputError) {
   Packing p = bonded_pair(0.0);
   EngineConfig c = bond_config(inf, inf);
-  c.bond_materials.clear();
+  c.bond_materials = BondMaterialList<ContactBond>{};
   EXPECT_THROW(Engine(p, c), InputError);
   c = bond_config(inf, inf);
-  c.bond_materials[0].normal_stiffness = -1;
+  std::get<BondMaterialList<ContactBond>>(c.bond_materials)[0].normal_stiffness = -1;
   EXPECT_THROW(Engine(p, c), InputError);
 }

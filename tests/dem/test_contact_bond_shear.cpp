@@ -33,9 +33,9 @@ Packing fixed_pair(double x0, bool periodic, double gap = 0.0, int image_x = 0) 
 
 EngineConfig config(double friction, double normal_strength, double shear_strength, double shear_stiffness = ks) {
   EngineConfig c;
-  c.types = {TypeParams{kn, shear_stiffness, friction, 1000.0, 0.0}};
+  c.types = {Material{kn, shear_stiffness, friction, 1000.0, 0.0}};
   c.stiffness_rule = StiffnessRule::contact;
-  c.bond_materials = {ContactBond::Params{kn, shear_stiffness, normal_strength, shear_strength}};
+  c.bond_materials = BondMaterialList<ContactBond>{{kn, shear_stiffness, normal_strength, shear_strength}};
   c.time_step = 1e-3;
   c.threads = 1;
   return c;

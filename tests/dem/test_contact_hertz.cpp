@@ -5,7 +5,7 @@
 #include <numbers>
 
 #include "packlab/core/error.hpp"
-#include "packlab/dem/contact_law.hpp"
+#include "packlab/dem/contact/hertz_mindlin.hpp"
 #include "packlab/dem/engine.hpp"
 
 using namespace packlab;
@@ -13,8 +13,8 @@ using namespace packlab::dem;
 
 namespace {
 
-TypeParams silica(double restitution) {
-  TypeParams t;
+Material silica(double restitution) {
+  Material t;
   t.youngs_modulus = 70e9;
   t.poisson_ratio = 0.17;
   t.density = 2200;
@@ -143,6 +143,6 @@ TEST(HertzMindlin, RequiresElasticConstants) {
   p.add({0.5, 0.5, 0.5}, 0.1);
   EngineConfig c;
   c.contact_law = "hertz_mindlin";
-  c.types = {TypeParams{}};  // youngs_modulus 0
+  c.types = {Material{}};  // youngs_modulus 0
   EXPECT_THROW(Engine(p, c), InputError);
 }

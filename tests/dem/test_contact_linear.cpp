@@ -5,7 +5,7 @@
 #include <cmath>
 #include <numbers>
 
-#include "packlab/dem/contact_law.hpp"
+#include "packlab/dem/contact/linear.hpp"
 #include "packlab/dem/engine.hpp"
 #include "packlab/dem/local_damping.hpp"
 
@@ -61,7 +61,7 @@ TEST(LinearContact, HeadOnCollisionDurationAndRestitution) {
   const double m_eff = m / 2;
   for (auto rule : {StiffnessRule::contact, StiffnessRule::particle}) {
     EngineConfig config;
-    config.types = {TypeParams{kn, 0.0, 0.0, rho, 0.0}};
+    config.types = {Material{kn, 0.0, 0.0, rho, 0.0}};
     config.stiffness_rule = rule;
     const double k_contact = rule == StiffnessRule::contact ? kn : kn / 2;
     const double expected = std::numbers::pi * std::sqrt(m_eff / k_contact);
@@ -80,7 +80,7 @@ TEST(LinearContact, LocalDampingRestitutionMatchesAnalyticValue) {
   const double m = rho * 4.0 / 3.0 * std::numbers::pi * r * r * r;
   for (double alpha : {0.1, 0.3, 0.7}) {
     EngineConfig config;
-    config.types = {TypeParams{kn, 0.0, 0.0, rho, alpha}};
+    config.types = {Material{kn, 0.0, 0.0, rho, alpha}};
     config.stiffness_rule = StiffnessRule::contact;
     const double dt = std::numbers::pi * std::sqrt(m / 2 / kn) / 4000;
     const Collision c = collide(head_on_pair(r, 0.01, 1e-6), config, dt);
@@ -108,7 +108,7 @@ TEST(LocalDamping, FreeParticleKeepsItsVelocity) {
   p.add({5, 5, 5}, 0.5);
   p.velocity = {{0.1, -0.2, 0.3}};
   EngineConfig config;
-  config.types = {TypeParams{100, 10, 0.5, 1000, 0.9}};
+  config.types = {Material{100, 10, 0.5, 1000, 0.9}};
   Engine engine(p, config);
   engine.run(1000);
   EXPECT_EQ(engine.packing().velocity[0], (Vec3{0.1, -0.2, 0.3}));

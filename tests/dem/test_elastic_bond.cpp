@@ -5,7 +5,7 @@
 #include <limits>
 #include <numbers>
 
-#include "packlab/dem/bond_law.hpp"
+#include "packlab/dem/bond/elastic_bond.hpp"
 #include "packlab/dem/engine.hpp"
 
 using namespace packlab;
@@ -105,11 +105,10 @@ TEST(ElasticBond, BondedPairOscillatesWithTheAxialStiffness) {
   p.add({6 * r + 1e-9, 5 * r, 5 * r}, r);
   p.bonds.add(0, 1, {0, 0, 0}, 0, l0);
   EngineConfig c;
-  c.types = {TypeParams{}};
+  c.types = {Material{}};
   c.types[0].density = 2200;
   c.types[0].damping = 0.0;
-  c.bond_law = "elastic";
-  c.elastic_bond_materials = {params()};
+  c.bond_materials = BondMaterialList<ElasticBond>{params()};
   c.threads = 1;
   c.time_step_safety = 0.02;
   Engine e(p, c);

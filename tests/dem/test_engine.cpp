@@ -69,7 +69,7 @@ struct JammedVibration {
 JammedVibration jammed_vibration() {
   Packing start = dense_random(128, 0.70, 11);
   EngineConfig config;
-  config.types = {TypeParams{1000.0, 0.0, 0.0, 1000.0, 0.7}};
+  config.types = {Material{1000.0, 0.0, 0.0, 1000.0, 0.7}};
   config.stiffness_rule = StiffnessRule::contact;
   config.threads = 1;
   Engine relaxer(start, config);
@@ -130,7 +130,7 @@ TEST(Engine, StiffnessSumRuleCountsEveryContactOfAParticle) {
   p.add({4.99, 5, 5}, 0.5, 0);
   p.add({5.98, 5, 5}, 0.5, 0);
   EngineConfig config;
-  config.types = {TypeParams{1000.0, 10.0, 0.0, 1000.0, 0.7}};
+  config.types = {Material{1000.0, 10.0, 0.0, 1000.0, 0.7}};
   config.stiffness_rule = StiffnessRule::contact;
   config.time_step_safety = 0.8;
   config.threads = 1;
@@ -162,7 +162,7 @@ TEST(Engine, EnergyIsConservedWithShearSprings) {
   Packing p = generate::make_lattice(lp);
   for (auto& r : p.radius) r *= 1.01;
   EngineConfig config;
-  config.types = {TypeParams{1000.0, 500.0, 1e6, 1000.0, 0.0}};
+  config.types = {Material{1000.0, 500.0, 1e6, 1000.0, 0.0}};
   config.stiffness_rule = StiffnessRule::contact;
   config.time_step_safety = 0.05;
   config.threads = 1;
@@ -182,7 +182,7 @@ TEST(Engine, EnergyIsConservedWithShearSprings) {
 TEST(Engine, LocalDampingRemovesEnergy) {
   Packing p = dense_random(250, 0.66, 13);
   EngineConfig config;
-  config.types = {TypeParams{1000.0, 100.0, 0.3, 1000.0, 0.7}};
+  config.types = {Material{1000.0, 100.0, 0.3, 1000.0, 0.7}};
   config.threads = 1;
   Engine engine(p, config);
   double previous = total_energy(engine);
@@ -197,7 +197,7 @@ TEST(Engine, LocalDampingRemovesEnergy) {
 TEST(Engine, DeterministicForAFixedThreadCount) {
   Packing p = dense_random(2000, 0.68, 5);
   EngineConfig config;
-  config.types = {TypeParams{1000.0, 10.0, 0.1, 1000.0, 0.7}};
+  config.types = {Material{1000.0, 10.0, 0.1, 1000.0, 0.7}};
   for (int threads : {1, 2}) {
     config.threads = threads;
     Engine a(p, config), b(p, config);
@@ -225,7 +225,7 @@ TEST(Engine, TimeStepFromLightestParticleAndStiffestSpring) {
   p.add({2, 2, 2}, 0.5, 0);
   p.add({6, 6, 6}, 0.1, 1);
   EngineConfig config;
-  config.types = {TypeParams{100.0, 10.0, 0.0, 1000.0, 0.7}, TypeParams{400.0, 500.0, 0.0, 100.0, 0.7}};
+  config.types = {Material{100.0, 10.0, 0.0, 1000.0, 0.7}, Material{400.0, 500.0, 0.0, 100.0, 0.7}};
   config.stiffness_rule = StiffnessRule::contact;
   config.time_step_safety = 0.3;
   Engine engine(p, config);
@@ -245,7 +245,7 @@ TEST(Engine, FixedParticlesDoNotMove) {
   p.add({1.9, 2, 2}, 0.5);
   p.fixed = {1, 0};
   EngineConfig config;
-  config.types = {TypeParams{100.0, 10.0, 0.0, 1000.0, 0.0}};
+  config.types = {Material{100.0, 10.0, 0.0, 1000.0, 0.0}};
   Engine engine(p, config);
   engine.run(2000);
   const Packing out = engine.packing();
@@ -260,7 +260,7 @@ TEST(Engine, ContactAcrossThePeriodicBoundary) {
   p.add({0.2, 1.5, 1.5}, 0.5);
   p.add({2.9, 1.5, 1.5}, 0.5);  // distance through the boundary 0.3: overlap 0.7
   EngineConfig config;
-  config.types = {TypeParams{100.0, 10.0, 0.0, 1000.0, 0.0}};
+  config.types = {Material{100.0, 10.0, 0.0, 1000.0, 0.0}};
   Engine engine(p, config);
   engine.run(1);
   const Packing out = engine.packing();
@@ -275,7 +275,7 @@ TEST(Relax, FccLatticeIsAlreadyInEquilibrium) {
   Packing p = generate::make_lattice(lp);
   for (auto& r : p.radius) r *= 1.01;
   EngineConfig config;
-  config.types = {TypeParams{100.0, 10.0, 0.0, 1000.0, 0.7}};
+  config.types = {Material{100.0, 10.0, 0.0, 1000.0, 0.7}};
   Engine engine(p, config);
   RelaxOptions ro;
   ro.tolerance = 1e-6;
@@ -287,7 +287,7 @@ TEST(Relax, FccLatticeIsAlreadyInEquilibrium) {
 TEST(Relax, OverlappingPackingConvergesAndSaysSo) {
   Packing p = dense_random(500, 0.70, 21);
   EngineConfig config;
-  config.types = {TypeParams{1000.0, 10.0, 0.1, 3690.0, 0.7}};
+  config.types = {Material{1000.0, 10.0, 0.1, 3690.0, 0.7}};
   config.stiffness_rule = StiffnessRule::contact;
   Engine engine(p, config);
   RelaxOptions ro;
@@ -310,11 +310,11 @@ TEST(Relax, OverlappingPackingConvergesAndSaysSo) {
 TEST(Engine, RejectsBadParameters) {
   Packing p = dense_random(10, 0.1, 1);
   EngineConfig config;
-  config.types = {TypeParams{-1.0, 10.0, 0.0, 1000.0, 0.7}};
+  config.types = {Material{-1.0, 10.0, 0.0, 1000.0, 0.7}};
   EXPECT_THROW(Engine(p, config), InputError);
-  config.types = {TypeParams{100.0, 10.0, 0.0, 1000.0, 1.0}};
+  config.types = {Material{100.0, 10.0, 0.0, 1000.0, 1.0}};
   EXPECT_THROW(Engine(p, config), InputError);
-  config.types = {TypeParams{100.0, 10.0, 0.0, 1000.0, 0.7}};
+  config.types = {Material{100.0, 10.0, 0.0, 1000.0, 0.7}};
   config.contact_law = "no_such_law";
   EXPECT_THROW(Engine(p, config), InputError);
   p.radius[3] = -1.0;

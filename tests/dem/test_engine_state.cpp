@@ -31,7 +31,7 @@ Packing two_types(long n, std::uint64_t seed) {
 
 EngineConfig two_type_config() {
   EngineConfig c;
-  c.types = {TypeParams{1000.0, 100.0, 0.3, 1000.0, 0.7}, TypeParams{100.0, 1.0, 0.0, 100.0, 0.7}};
+  c.types = {Material{1000.0, 100.0, 0.3, 1000.0, 0.7}, Material{100.0, 1.0, 0.0, 100.0, 0.7}};
   c.threads = 2;
   return c;
 }

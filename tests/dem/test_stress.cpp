@@ -19,7 +19,7 @@ TEST(ParticleStress, CompressedSimpleCubicLatticeIsIsotropicAndMatchesTheContact
   Packing p = generate::make_lattice(lp);
   for (auto& r : p.radius) r = 0.505;
   EngineConfig c;
-  c.types = {TypeParams{1000.0, 100.0, 0.0, 1000.0, 0.7}};
+  c.types = {Material{1000.0, 100.0, 0.0, 1000.0, 0.7}};
   c.stiffness_rule = StiffnessRule::contact;
   Engine e(p, c);
   const ContactForces forces = e.contact_forces();
@@ -43,7 +43,7 @@ TEST(ParticleStress, WallContactsCountWithTheirBranchToTheContactPoint) {
   p.box.periodic = {true, true, false};
   p.add({5, 5, 1.49}, 0.5);
   EngineConfig c;
-  c.types = {TypeParams{1000.0, 100.0, 0.0, 1000.0, 0.7}};
+  c.types = {Material{1000.0, 100.0, 0.0, 1000.0, 0.7}};
   c.stiffness_rule = StiffnessRule::contact;
   Engine e(p, c);
   e.add_wall(Wall{{0, 0, 1.0}, {0, 0, 1}, {}});

@@ -23,7 +23,7 @@ Packing one_sphere(Vec3 position, Vec3 velocity) {
 
 EngineConfig linear_config(double damping = 0.0) {
   EngineConfig c;
-  c.types = {TypeParams{1000.0, 100.0, 0.3, 1000.0, damping}};
+  c.types = {Material{1000.0, 100.0, 0.3, 1000.0, damping}};
   c.stiffness_rule = StiffnessRule::contact;
   c.threads = 1;
   c.time_step_safety = 0.01;

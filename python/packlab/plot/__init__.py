@@ -6,51 +6,9 @@ FILE.png`` after it wrote its CSV tables. Figures read the CSV files packlab wri
 """
 
 import importlib
-import os
 import sys
-import tempfile
 
-
-def read_csv(path):
-    """Reads a packlab CSV table (``#`` comment lines skipped) into a dict of column lists."""
-    import numpy as np
-
-    with open(path) as f:
-        lines = [line for line in f if line.strip() and not line.startswith("#")]
-    header = lines[0].strip().split(",")
-    rows = [line.strip().split(",") for line in lines[1:]]
-    columns = {}
-    for k, name in enumerate(header):
-        values = [row[k] for row in rows]
-        try:
-            columns[name] = np.array([float(v) for v in values])
-        except ValueError:
-            columns[name] = values
-    return columns
-
-
-def save(fig, path):
-    """Saves atomically (temporary name, then rename) at 150 dpi."""
-    path = os.fspath(path)
-    folder = os.path.dirname(os.path.abspath(path))
-    fd, tmp = tempfile.mkstemp(prefix=".plot-", suffix=os.path.splitext(path)[1], dir=folder)
-    os.close(fd)
-    try:
-        fig.savefig(tmp, dpi=150, bbox_inches="tight")
-        os.replace(tmp, path)
-    finally:
-        if os.path.exists(tmp):
-            os.remove(tmp)
-
-
-def new_figure(width=5.0, height=3.8):
-    import matplotlib
-
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-
-    fig, ax = plt.subplots(figsize=(width, height), layout="constrained")
-    return fig, ax
+from packlab.plot._common import new_figure, read_csv, save  # noqa: F401 (the public helpers)
 
 
 def main(argv=None):

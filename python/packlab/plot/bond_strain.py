@@ -1,9 +1,7 @@
 """Distribution of bonds over their axial strain at several macroscopic strains (Fig. 7 of
 bpm-inverse-opals; the ``bond_strain.csv`` of ``packlab test compress --snapshot-strains``)."""
 
-import argparse
-
-from packlab.plot import new_figure, read_csv, save
+from packlab.plot._common import argument, new_figure, read_csv, run
 
 
 def figure(bond_strain_csv):
@@ -25,9 +23,4 @@ def figure(bond_strain_csv):
 
 
 def main(argv):
-    parser = argparse.ArgumentParser(prog="packlab.plot bond_strain")
-    parser.add_argument("bond_strain_csv")
-    parser.add_argument("--out", required=True)
-    args = parser.parse_args(argv)
-    save(figure(args.bond_strain_csv), args.out)
-    return 0
+    return run("bond_strain", argv, figure, argument("bond_strain_csv"))

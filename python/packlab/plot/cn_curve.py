@@ -5,10 +5,9 @@ the inflection point and its tangent, and the strain energy on a second axis.
 Several CSV files can be given (one curve each, e.g. the n-study); the inflection point is
 marked when ``--qi``, ``--cni`` and ``--slope`` are given (for the first curve)."""
 
-import argparse
 import os
 
-from packlab.plot import new_figure, read_csv, save
+from packlab.plot._common import argument, new_figure, read_csv, run
 
 
 def figure(csv_paths, qi=None, cni=None, slope=None, labels=None, energy=True):
@@ -45,14 +44,6 @@ def figure(csv_paths, qi=None, cni=None, slope=None, labels=None, energy=True):
 
 
 def main(argv):
-    parser = argparse.ArgumentParser(prog="packlab.plot cn_curve")
-    parser.add_argument("csv", nargs="+")
-    parser.add_argument("--qi", type=float)
-    parser.add_argument("--cni", type=float)
-    parser.add_argument("--slope", type=float)
-    parser.add_argument("--labels", nargs="*")
-    parser.add_argument("--no-energy", action="store_true")
-    parser.add_argument("--out", required=True)
-    args = parser.parse_args(argv)
-    save(figure(args.csv, args.qi, args.cni, args.slope, args.labels, not args.no_energy), args.out)
-    return 0
+    return run("cn_curve", argv, figure, argument("csv", nargs="+"), argument("--qi", type=float),
+               argument("--cni", type=float), argument("--slope", type=float), argument("--labels", nargs="*"),
+               argument("--no-energy", dest="energy", action="store_false"))

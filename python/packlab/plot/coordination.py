@@ -1,9 +1,7 @@
 """Histogram of the number of contacts per particle, from the ``coordination.csv`` written
 by ``packlab analyze``."""
 
-import argparse
-
-from packlab.plot import new_figure, read_csv, save
+from packlab.plot._common import argument, new_figure, read_csv, run
 
 
 def figure(coordination_csv):
@@ -22,9 +20,4 @@ def figure(coordination_csv):
 
 
 def main(argv):
-    parser = argparse.ArgumentParser(prog="packlab.plot coordination")
-    parser.add_argument("coordination_csv")
-    parser.add_argument("--out", required=True)
-    args = parser.parse_args(argv)
-    save(figure(args.coordination_csv), args.out)
-    return 0
+    return run("coordination", argv, figure, argument("coordination_csv"))

@@ -1,10 +1,9 @@
 """Cumulative pore-size distribution P(r_P > r) with its confidence band and the fit of
 eq. 6 (doh-elastic-properties), from the ``pore_size.csv`` written by ``packlab analyze``."""
 
-import argparse
 import math
 
-from packlab.plot import new_figure, read_csv, save
+from packlab.plot._common import argument, new_figure, read_csv, run
 
 
 def figure(pore_csv, a=None, b=None, r0=None, fit_min=None, fit_max=None):
@@ -31,14 +30,6 @@ def figure(pore_csv, a=None, b=None, r0=None, fit_min=None, fit_max=None):
 
 
 def main(argv):
-    parser = argparse.ArgumentParser(prog="packlab.plot pore_size")
-    parser.add_argument("pore_csv")
-    parser.add_argument("--a", type=float)
-    parser.add_argument("--b", type=float)
-    parser.add_argument("--r0", type=float)
-    parser.add_argument("--fit-min", type=float)
-    parser.add_argument("--fit-max", type=float)
-    parser.add_argument("--out", required=True)
-    args = parser.parse_args(argv)
-    save(figure(args.pore_csv, args.a, args.b, args.r0, args.fit_min, args.fit_max), args.out)
-    return 0
+    return run("pore_size", argv, figure, argument("pore_csv"), argument("--a", type=float),
+               argument("--b", type=float), argument("--r0", type=float), argument("--fit-min", type=float),
+               argument("--fit-max", type=float))

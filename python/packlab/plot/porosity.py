@@ -2,18 +2,14 @@
 eq. 22-26). Reads a CSV with columns porosity, youngs_modulus, strength (one row per sample)
 and optional fit parameters."""
 
-import argparse
-
-from packlab.plot import new_figure, read_csv, save
+from packlab.plot._common import argument, read_csv, run, subplots
 
 
 def figure(samples_csv, e0=0.0, b=0.0, m=0.0, s0=0.0, bs=0.0):
     import numpy as np
 
     data = read_csv(samples_csv)
-    fig, ax = new_figure(9.0, 3.8)
-    fig.clf()
-    ax1, ax2 = fig.subplots(1, 2)
+    fig, (ax1, ax2) = subplots(1, 2, width=9.0)
     eps = data["porosity"]
     ax1.plot(eps, data["youngs_modulus"] * 1e-9, "ko", ms=4, label="BPM samples")
     x = np.linspace(0.0, max(eps.max(), 0.75), 100)
@@ -36,14 +32,6 @@ def figure(samples_csv, e0=0.0, b=0.0, m=0.0, s0=0.0, bs=0.0):
 
 
 def main(argv):
-    parser = argparse.ArgumentParser(prog="packlab.plot porosity")
-    parser.add_argument("samples_csv")
-    parser.add_argument("--e0", type=float, default=0.0)
-    parser.add_argument("--b", type=float, default=0.0)
-    parser.add_argument("--m", type=float, default=0.0)
-    parser.add_argument("--s0", type=float, default=0.0)
-    parser.add_argument("--bs", type=float, default=0.0)
-    parser.add_argument("--out", required=True)
-    args = parser.parse_args(argv)
-    save(figure(args.samples_csv, args.e0, args.b, args.m, args.s0, args.bs), args.out)
-    return 0
+    return run("porosity", argv, figure, argument("samples_csv"), argument("--e0", type=float, default=0.0),
+               argument("--b", type=float, default=0.0), argument("--m", type=float, default=0.0),
+               argument("--s0", type=float, default=0.0), argument("--bs", type=float, default=0.0))

@@ -4,9 +4,7 @@ paper's Figs. 1-2: the contact region and the full range (the CSV written by
 ``packlab analyze rdf``, ``generate ls``, ``generate scrm`` and ``shake``). Several CSV files
 (e.g. LS and SCRM) are drawn on the same axes, labelled by ``--labels``."""
 
-import argparse
-
-from packlab.plot import read_csv, save
+from packlab.plot._common import argument, comma_list, read_csv, run, subplots
 
 
 def percus_yevick_contact(c):
@@ -14,16 +12,10 @@ def percus_yevick_contact(c):
 
 
 def figure(rdf_csvs, phi=None, labels=None, contact_range=(1.95, 2.25)):
-    import matplotlib
-
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-
     if isinstance(rdf_csvs, str):
         rdf_csvs = [rdf_csvs]
     labels = labels or [None] * len(rdf_csvs)
-    fig, (ax1, ax2) = plt.subplots(1, 2, figsize=(9.5, 3.8), layout="constrained",
-                                   gridspec_kw={"width_ratios": [1, 2]})
+    fig, (ax1, ax2) = subplots(1, 2, width=9.5, gridspec_kw={"width_ratios": [1, 2]})
     data = None
     for k, (path, label) in enumerate(zip(rdf_csvs, labels)):
         data = read_csv(path)
@@ -50,12 +42,5 @@ def figure(rdf_csvs, phi=None, labels=None, contact_range=(1.95, 2.25)):
 
 
 def main(argv):
-    parser = argparse.ArgumentParser(prog="packlab.plot rdf")
-    parser.add_argument("rdf_csv", nargs="+")
-    parser.add_argument("--phi", type=float, default=None)
-    parser.add_argument("--labels", default=None, help="comma-separated, one per CSV")
-    parser.add_argument("--out", required=True)
-    args = parser.parse_args(argv)
-    labels = args.labels.split(",") if args.labels else None
-    save(figure(args.rdf_csv, args.phi, labels), args.out)
-    return 0
+    return run("rdf", argv, figure, argument("rdf_csv", nargs="+"), argument("--phi", type=float, default=None),
+               argument("--labels", type=comma_list, default=None, help="comma-separated, one per CSV"))

@@ -3,16 +3,10 @@ classes, with the Willis-type curve of eq. (20) at the Percus-Yevick mixture con
 ``rdf_partial.csv`` written by ``packlab analyze rdf --partial``). Several CSV files are drawn
 on the same axes, labelled by ``--labels``."""
 
-import argparse
-
-from packlab.plot import read_csv, save
+from packlab.plot._common import argument, comma_list, read_csv, run, subplots
 
 
 def figure(csvs, labels=None, r_max=None):
-    import matplotlib
-
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
     import numpy as np
 
     if isinstance(csvs, str):
@@ -21,7 +15,7 @@ def figure(csvs, labels=None, r_max=None):
     tables = [read_csv(p) for p in csvs]
     first = tables[0]
     pairs = sorted(set(zip(first["k"].astype(int), first["m"].astype(int))))
-    fig, axes = plt.subplots(1, len(pairs), figsize=(4.2 * len(pairs), 3.6), layout="constrained", squeeze=False)
+    fig, axes = subplots(1, len(pairs), width=4.2 * len(pairs), height=3.6, squeeze=False)
     for ax, (k, m) in zip(axes[0], pairs):
         for q, (data, label) in enumerate(zip(tables, labels)):
             sel = (data["k"].astype(int) == k) & (data["m"].astype(int) == m)
@@ -40,11 +34,5 @@ def figure(csvs, labels=None, r_max=None):
 
 
 def main(argv):
-    parser = argparse.ArgumentParser(prog="packlab.plot rdf_partial")
-    parser.add_argument("csv", nargs="+")
-    parser.add_argument("--labels", default=None)
-    parser.add_argument("--rmax", type=float, default=None)
-    parser.add_argument("--out", required=True)
-    args = parser.parse_args(argv)
-    save(figure(args.csv, args.labels.split(",") if args.labels else None, args.rmax), args.out)
-    return 0
+    return run("rdf_partial", argv, figure, argument("csv", nargs="+"),
+               argument("--labels", type=comma_list, default=None), argument("--rmax", type=float, default=None))

@@ -3,11 +3,9 @@ power law G' = C (a - a0)^beta (eq. 7). The CSV has columns ``a``, ``storage_mod
 ``std`` [Pa] and optionally ``label`` (points with the same label share a marker, e.g. "this
 work" and "paper"); the fit uses the rows whose label is ``--fit-label`` (all when not given)."""
 
-import argparse
-
 import numpy as np
 
-from packlab.plot import new_figure, read_csv, save
+from packlab.plot._common import argument, new_figure, read_csv, run
 
 
 def fit_power_law(a, g, a0_bounds=None):
@@ -48,10 +46,4 @@ def figure(table_csv, fit_label=None):
 
 
 def main(argv):
-    parser = argparse.ArgumentParser(prog="packlab.plot storage_modulus")
-    parser.add_argument("table_csv")
-    parser.add_argument("--fit-label", default=None)
-    parser.add_argument("--out", required=True)
-    args = parser.parse_args(argv)
-    save(figure(args.table_csv, args.fit_label), args.out)
-    return 0
+    return run("storage_modulus", argv, figure, argument("table_csv"), argument("--fit-label", default=None))

@@ -3,9 +3,7 @@ force-displacement curve (the ``curve.csv`` written by ``packlab test compress``
 curves may be given (e.g. two strain rates) and are drawn together; from Python a curve may
 also be a dict of columns (as ``read_csv`` returns them: strain, stress, ...)."""
 
-import argparse
-
-from packlab.plot import new_figure, read_csv, save
+from packlab.plot._common import argument, new_figure, read_csv, run
 
 
 def figure(curve_csvs, modulus=0.0, intercept=0.0, fit_begin=0.0, fit_end=0.0, force_displacement=False, labels=None):
@@ -44,16 +42,7 @@ def figure(curve_csvs, modulus=0.0, intercept=0.0, fit_begin=0.0, fit_end=0.0, f
 
 
 def main(argv):
-    parser = argparse.ArgumentParser(prog="packlab.plot stress_strain")
-    parser.add_argument("curve_csv", nargs="+")
-    parser.add_argument("--modulus", type=float, default=0.0)
-    parser.add_argument("--intercept", type=float, default=0.0)
-    parser.add_argument("--fit-begin", type=float, default=0.0)
-    parser.add_argument("--fit-end", type=float, default=0.0)
-    parser.add_argument("--force-displacement", action="store_true")
-    parser.add_argument("--labels", nargs="*")
-    parser.add_argument("--out", required=True)
-    args = parser.parse_args(argv)
-    save(figure(args.curve_csv, args.modulus, args.intercept, args.fit_begin, args.fit_end, args.force_displacement,
-                args.labels), args.out)
-    return 0
+    return run("stress_strain", argv, figure, argument("curve_csv", nargs="+"),
+               argument("--modulus", type=float, default=0.0), argument("--intercept", type=float, default=0.0),
+               argument("--fit-begin", type=float, default=0.0), argument("--fit-end", type=float, default=0.0),
+               argument("--force-displacement", action="store_true"), argument("--labels", nargs="*"))

@@ -8,9 +8,7 @@
 
 usage: python3 -m packlab.plot vem_study studies|stiffness STUDY.csv [CURVES.csv] --out FILE.png"""
 
-import argparse
-
-from packlab.plot import read_csv, save
+from packlab.plot._common import argument, read_csv, run, subplots, UsageError
 
 
 def _rows(study):
@@ -25,49 +23,45 @@ def _curve(curves, name):
     return curves["q"][mask], curves["cn"][mask], curves["phi_total"][mask]
 
 
-def studies(study, curves):
-    import matplotlib.pyplot as plt
-    import numpy as np
+def _present(rows, names):
+    """(k, name) for the names that the study has, k counting all names (colour C{k} stays put)."""
+    return [(k, name) for k, name in enumerate(names) if name in rows]
 
+
+def _label(ax, xlabel, ylabel, title, legend=True):
+    """Axis labels and title of one panel, and its legend."""
+    ax.set_xlabel(xlabel)
+    ax.set_ylabel(ylabel)
+    ax.set_title(title)
+    if legend:
+        ax.legend(fontsize=7)
+
+
+def studies(study, curves):
     rows = _rows(study)
-    fig, axes = plt.subplots(2, 2, figsize=(10, 8))
+    fig, axes = subplots(2, 2, width=10, height=8, layout=None)
     ax = axes[0, 0]
-    for k, name in enumerate(["n025", "n050_seed1", "n100", "n200"]):
-        if name not in rows:
-            continue
+    for k, name in _present(rows, ["n025", "n050_seed1", "n100", "n200"]):
         q, cn, _ = _curve(curves, name)
         n = rows[name]["n"]
         ax.plot(q * n ** (1 / 3), cn, "-", color=f"C{k}", lw=1, label=f"n = {n:g}")
         ax.plot([rows[name]["q_n13"]], [rows[name]["cn_i"]], "o", color=f"C{k}", ms=4)
     ax.axvline(0.82, color="k", ls=":", lw=0.8, label="paper q_i n^1/3 = 0.82")
-    ax.set_xlabel("q n^(1/3)")
-    ax.set_ylabel("CN (structural)")
-    ax.set_title("n-study, N_S = 1000 (Fig. 2)")
-    ax.legend(fontsize=7)
+    _label(ax, "q n^(1/3)", "CN (structural)", "n-study, N_S = 1000 (Fig. 2)")
 
     ax = axes[0, 1]
-    for k, name in enumerate(["n050_seed1", "n050_ns2000", "n050_ns4000"]):
-        if name not in rows:
-            continue
+    for k, name in _present(rows, ["n050_seed1", "n050_ns2000", "n050_ns4000"]):
         q, cn, _ = _curve(curves, name)
         ax.plot(q, cn, "-", color=f"C{k}", lw=1, label=f"N_S = {int(rows[name]['structural'])}")
-    ax.set_xlabel("q = r_V / r_S")
-    ax.set_ylabel("CN (structural)")
-    ax.set_title("size at n = 0.5")
-    ax.legend(fontsize=7)
+    _label(ax, "q = r_V / r_S", "CN (structural)", "size at n = 0.5")
 
     ax = axes[1, 0]
-    for k, name in enumerate(["phi02", "phi03", "n050_seed1", "phi05", "phi055"]):
-        if name not in rows:
-            continue
+    for k, name in _present(rows, ["phi02", "phi03", "n050_seed1", "phi05", "phi055"]):
         _, cn, phi_total = _curve(curves, name)
         ax.plot(phi_total, cn, "-", color=f"C{k}", lw=1, label=f"Phi_S = {rows[name]['phi_s']:g}")
         ax.plot([rows[name]["phi_total_i"]], [rows[name]["cn_i"]], "o", color=f"C{k}", ms=4)
     ax.axvline(0.615, color="k", ls=":", lw=0.8, label="paper Phi_T,i = 0.615")
-    ax.set_xlabel("Phi_T = Phi_S (1 + q^3 n)")
-    ax.set_ylabel("CN (structural)")
-    ax.set_title("Phi_S-study, n = 0.5 (Fig. 4)")
-    ax.legend(fontsize=7)
+    _label(ax, "Phi_T = Phi_S (1 + q^3 n)", "CN (structural)", "Phi_S-study, n = 0.5 (Fig. 4)")
 
     ax = axes[1, 1]
     settings = [("n050_contacts02_seed", "contacts, 0.2"), ("n050_contacts04_seed", "contacts, 0.4"),
@@ -76,54 +70,41 @@ def studies(study, curves):
         qs = [rows[f"{prefix}{s}"]["q_i"] for s in (1, 2, 3) if f"{prefix}{s}" in rows]
         slopes = [rows[f"{prefix}{s}"]["slope"] for s in (1, 2, 3) if f"{prefix}{s}" in rows]
         ax.plot(qs, slopes, "o", color=f"C{k}", label=label)
-    ax.set_xlabel("q_i")
-    ax.set_ylabel("dCN/dq at q_i")
-    ax.set_title("time-step rule and safety, n = 0.5, seeds 1-3")
-    ax.legend(fontsize=7)
+    _label(ax, "q_i", "dCN/dq at q_i", "time-step rule and safety, n = 0.5, seeds 1-3")
     fig.tight_layout()
     return fig
 
 
 def stiffness(study):
-    import matplotlib.pyplot as plt
     import numpy as np
 
     rows = _rows(study)
     picked = [r for name, r in rows.items() if name.startswith("stiffness_") or name == "n050_seed1"]
     picked.sort(key=lambda r: r["kn_ratio"])
     kn = np.array([r["kn_ratio"] for r in picked])
-    fig, (a, b) = plt.subplots(1, 2, figsize=(10, 4))
+    fig, (a, b) = subplots(1, 2, width=10, height=4, layout=None)
     a.errorbar(kn, [r["q_i"] for r in picked], yerr=[r["q_i_unc"] for r in picked], fmt="o", label="packlab, N_S = 1000")
     law = np.logspace(-7, -4, 20)
     a.plot(law, 0.02 * np.log(law) + 1.16, "k--", lw=0.8, label="paper: 0.02 ln K_n + 1.16")
     a.plot([1e-4, 1e1], [1.02, 1.02], "k:", lw=0.8, label="paper plateau ~1.02")
     a.set_xscale("log")
-    a.set_xlabel("K_n = k_n,V / k_n,S")
-    a.set_ylabel("q_i")
-    a.set_title("void stiffness (Fig. 7)")
-    a.legend(fontsize=7)
+    _label(a, "K_n = k_n,V / k_n,S", "q_i", "void stiffness (Fig. 7)")
     b.errorbar(kn, [r["slope"] for r in picked], yerr=[r["slope_unc"] for r in picked], fmt="o")
     b.set_xscale("log")
-    b.set_xlabel("K_n = k_n,V / k_n,S")
-    b.set_ylabel("dCN/dq at q_i")
-    b.set_title("slope at the inflection (Fig. 8)")
+    _label(b, "K_n = k_n,V / k_n,S", "dCN/dq at q_i", "slope at the inflection (Fig. 8)", legend=False)
     fig.tight_layout()
     return fig
 
 
+def _draw(kind, study_csv, curves_csv):
+    study = read_csv(study_csv)
+    if kind == "studies":
+        if not curves_csv:
+            raise UsageError("studies needs the curves table")
+        return studies(study, read_csv(curves_csv))
+    return stiffness(study)
+
+
 def main(argv):
-    parser = argparse.ArgumentParser(prog="packlab.plot vem_study")
-    parser.add_argument("kind", choices=["studies", "stiffness"])
-    parser.add_argument("study")
-    parser.add_argument("curves", nargs="?")
-    parser.add_argument("--out", required=True)
-    args = parser.parse_args(argv)
-    study = read_csv(args.study)
-    if args.kind == "studies":
-        if not args.curves:
-            parser.error("studies needs the curves table")
-        fig = studies(study, read_csv(args.curves))
-    else:
-        fig = stiffness(study)
-    save(fig, args.out)
-    return 0
+    return run("vem_study", argv, _draw, argument("kind", choices=["studies", "stiffness"]), argument("study"),
+               argument("curves", nargs="?"))

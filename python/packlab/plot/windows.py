@@ -2,9 +2,7 @@
 other centres, like the paper's Fig. 4 (the ``windows.csv`` written by ``packlab analyze rdf``).
 Several CSV files are drawn on the same axes, labelled by ``--labels``."""
 
-import argparse
-
-from packlab.plot import new_figure, read_csv, save
+from packlab.plot._common import argument, comma_list, new_figure, read_csv, run
 
 
 def figure(csvs, labels=None):
@@ -22,10 +20,4 @@ def figure(csvs, labels=None):
 
 
 def main(argv):
-    parser = argparse.ArgumentParser(prog="packlab.plot windows")
-    parser.add_argument("csv", nargs="+")
-    parser.add_argument("--labels", default=None)
-    parser.add_argument("--out", required=True)
-    args = parser.parse_args(argv)
-    save(figure(args.csv, args.labels.split(",") if args.labels else None), args.out)
-    return 0
+    return run("windows", argv, figure, argument("csv", nargs="+"), argument("--labels", type=comma_list, default=None))

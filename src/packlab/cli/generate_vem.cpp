@@ -45,7 +45,7 @@ struct RunSettings {
 
 constexpr std::uint64_t settings_magic = 0x31544553434D4556ULL;  // "VEMCSET1"
 
-void add_material_keys(io::ConfigSchema& schema, const std::string& section, dem::TypeParams& m) {
+void add_material_keys(io::ConfigSchema& schema, const std::string& section, dem::Material& m) {
   schema.number(section + ".normal_stiffness", m.normal_stiffness, "Particle normal stiffness k_n [N/m]")
       .number(section + ".shear_stiffness", m.shear_stiffness, "Particle shear stiffness k_s [N/m]")
       .number(section + ".density", m.density, "Density [kg/m^3]")
@@ -146,7 +146,7 @@ std::string curve_csv(const generate::Vem& vem) {
 }
 
 nlohmann::json params_json(const generate::VemParams& p) {
-  const auto material = [](const dem::TypeParams& m) {
+  const auto material = [](const dem::Material& m) {
     return nlohmann::json{{"normal_stiffness_N_per_m", m.normal_stiffness},
                           {"shear_stiffness_N_per_m", m.shear_stiffness},
                           {"density_kg_per_m3", m.density},

@@ -20,7 +20,7 @@ namespace packlab::cli {
 void add_relax(CLI::App& app) {
   struct Options {
     std::string in, out, log;
-    dem::TypeParams material;
+    dem::Material material;
     std::string stiffness_rule = "particle";
     double time_step = 0.0;
     double time_step_safety = 0.2;

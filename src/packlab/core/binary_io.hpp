@@ -44,4 +44,14 @@ void read_vector(std::istream& in, std::vector<T>& v, const char* what, std::uin
     fail_input(std::string("checkpoint is truncated while reading ") + what);
 }
 
+inline void write_string(std::ostream& out, const std::string& s) {
+  write_vector(out, std::vector<char>(s.begin(), s.end()));
+}
+
+inline void read_string(std::istream& in, std::string& s, const char* what) {
+  std::vector<char> chars;
+  read_vector(in, chars, what, 4096);
+  s.assign(chars.begin(), chars.end());
+}
+
 }  // namespace packlab::binary

@@ -68,11 +68,11 @@ void NeighborList::build(const Box& box, std::vector<Vec3>& position, const std:
   const int n = static_cast<int>(position.size());
   double r_max = 0.0;
   for (double r : radius) r_max = std::max(r_max, r);
-  const double range = 2.0 * r_max + skin_;
+  const double range = 2.0 * r_max + reach_ + skin_;
   for (int a = 0; a < 3; ++a)
     if (box.periodic[a] && box.length[a] < range)
       fail_input(fmt::format(
-          "periodic box edge along {} = {:g} m is shorter than the interaction range 2*r_max + skin = {:g} m",
+          "periodic box edge along {} = {:g} m is shorter than the interaction range 2*r_max + reach + skin = {:g} m",
           "xyz"[a], box.length[a], range));
   if (wraps) {
     wraps->resize(position.size(), {0, 0, 0});
@@ -136,7 +136,7 @@ void NeighborList::build(const Box& box, std::vector<Vec3>& position, const std:
     const int* __restrict slot_start = cell_start_.data();
     const int* __restrict cell_of = particle_cell_.data();
     const std::array<Vec3, 27> offsets = offsets_;
-    const double skin = skin_;
+    const double skin = skin_ + reach_;  // listing range beyond touching
     for (int i = begin; i < end; ++i) {
       const Vec3 pi = position[i];
       const double ri = radius[i];

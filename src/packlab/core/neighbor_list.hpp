@@ -1,6 +1,7 @@
 // Linked cells + Verlet neighbour list with a skin (half list: each pair once).
 //
-// A pair (i, j, image) is listed when |r_j + image*L - r_i| < r_i + r_j + skin. Images are
+// A pair (i, j, image) is listed when |r_j + image*L - r_i| < r_i + r_j + reach + skin, where
+// `reach` is how far beyond touching the interaction acts (0 for contact-only laws). Images are
 // enumerated explicitly through the cell stencil instead of by the minimum-image rule, so
 // boxes down to one interaction range per periodic axis are handled (several images of the
 // same particle can then be neighbours). The list rebuilds itself when any particle moved
@@ -31,6 +32,9 @@ class NeighborList {
 
   void set_skin(double skin) { skin_ = skin; }
   double skin() const { return skin_; }
+  // Interaction range beyond touching [m]; listed, but not part of the rebuild criterion.
+  void set_reach(double reach) { reach_ = reach; }
+  double reach() const { return reach_; }
 
   // Wraps `position` into the box along periodic axes and rebuilds. Throws InputError if a
   // periodic box edge is shorter than the largest interaction range (2 r_max + skin).
@@ -63,6 +67,7 @@ class NeighborList {
 
  private:
   double skin_;
+  double reach_ = 0.0;
   std::vector<int> first_;
   std::vector<int> partner_;
   std::vector<std::uint8_t> image_;

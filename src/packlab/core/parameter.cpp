@@ -7,8 +7,7 @@
 namespace packlab {
 
 std::string Range::text(std::string_view unit) const {
-  std::string u;  // (" " + unit trips GCC 12's -Wrestrict false positive)
-  if (!unit.empty()) u.append(" ").append(unit);
+  const std::string u = unit.empty() ? std::string() : fmt::format(" {}", unit);
   const bool low = std::isfinite(min), high = std::isfinite(max);
   std::string out;
   if (low && high)
@@ -18,8 +17,8 @@ std::string Range::text(std::string_view unit) const {
   else if (high)
     out = fmt::format("{} {:g}{}", max_open ? "<" : "<=", max, u);
   else
-    out = "a finite number" + u;
-  if (std::isinf(max) && !max_open) out += " (inf: never)";
+    out = fmt::format("a finite number{}", u);
+  if (std::isinf(max) && !max_open) out = fmt::format("{} (inf: never)", out);
   return out;
 }
 

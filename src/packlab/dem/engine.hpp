@@ -1,6 +1,6 @@
 // The DEM engine: soft spheres, leap-frog (PFC's central difference) integration of
 // translation and rotation, linked-cell + Verlet neighbour list with a skin, contact laws
-// from contact_law.hpp, Cundall local damping, fixed particles. SI units throughout.
+// from dem/contact/, bond laws from dem/bond/, Cundall local damping, fixed particles. SI units throughout.
 //
 // Time stepping (central difference, as PFC): forces F(t) from positions x(t), then
 //   v(t + dt/2) = v(t - dt/2) + (F(t) + F_d) / m dt,   x(t + dt) = x(t) + v(t + dt/2) dt,
@@ -23,8 +23,8 @@
 #include "packlab/core/neighbor_list.hpp"
 #include "packlab/core/packing.hpp"
 #include "packlab/core/particle_store.hpp"
-#include "packlab/dem/bond_law.hpp"
-#include "packlab/dem/contact_law.hpp"
+#include "packlab/dem/bond/registry.hpp"
+#include "packlab/dem/contact/registry.hpp"
 #include "packlab/dem/material.hpp"
 
 namespace packlab::dem {
@@ -47,10 +47,16 @@ enum class TimeStepRule { global, contacts, stiffness_sum };
 TimeStepRule time_step_rule_from_name(const std::string& name);
 std::string time_step_rule_name(TimeStepRule rule);
 
+template <class BondLaw>
+using BondMaterialList = std::vector<typename BondLaw::Params>;
+// Parameters per bond material for one bond law: the alternative held names the law (a single
+// entry applies to every material).
+using BondMaterials = BondLaws::variant<BondMaterialList>;
+
 struct EngineConfig {
-  std::string contact_law = "linear";
+  std::string contact_law = "linear";  // one of contact_law_names()
   // Parameters per particle type; a single entry applies to every type.
-  std::vector<TypeParams> types{TypeParams{}};
+  std::vector<Material> types{Material{}};
   StiffnessRule stiffness_rule = StiffnessRule::particle;
   double time_step = 0.0;          // [s]; 0 = time_step_safety * min_i sqrt(m_i / k_i)
   double time_step_safety = 0.2;   // [-]
@@ -59,15 +65,15 @@ struct EngineConfig {
   // (the step the heaviest particle needs), used while nothing touches.
   double max_time_step = 0.0;
   double skin_ratio = 0.2;         // Verlet skin as a fraction of the largest radius [-]
-  // Bonds of the packing's bond list: parameters per bond material (a single entry applies to
-  // every material). Required when the packing has intact bonds.
-  // bond_law "contact" (PFC contact bond) takes bond_materials, "elastic" (bpm eq. 11-17)
-  // takes elastic_bond_materials.
-  std::string bond_law = "contact";
-  std::vector<ContactBond::Params> bond_materials;
-  std::vector<ElasticBond::Params> elastic_bond_materials;
+  // Bonds of the packing's bond list: the bond law and its parameters per bond material.
+  // Required when the packing has intact bonds. E.g.
+  //   config.bond_materials = BondMaterialList<ElasticBond>{{.youngs_modulus = 6.5e9}};
+  BondMaterials bond_materials;
   int threads = 0;                 // 0 = OpenMP default
 };
+
+// The bond law that `materials` holds parameters for ("contact", "elastic").
+std::string bond_law_name(const BondMaterials& materials);
 
 // A plane wall: particles on the side the normal points to are pushed back by the contact law
 // (the wall is taken to be of the touching particle's material, infinitely large and heavy).
@@ -78,8 +84,9 @@ struct Wall {
   Vec3 velocity{};         // [m/s]
 };
 
-// Names of the registered contact laws (the user-facing strings).
+// Names of the registered contact and bond laws (the user-facing strings).
 std::vector<std::string> contact_law_names();
+std::vector<std::string> bond_law_names();
 
 // A bond failure (a breakage criterion met, eq. 16-17 / the contact bond's strengths): the
 // bond's index in the packing's bond list, the time and the bond's midpoint at that step
@@ -122,15 +129,32 @@ struct ContactForces {
 // positive. Nine components per particle, row-major, in packing order [Pa].
 std::vector<std::array<double, 9>> particle_stress(const ContactForces& forces, const Packing& packing);
 
+// The contact law's state in the engine: parameters per pair of types and the histories of
+// the listed pairs and of the particle-wall contacts.
 template <class Law>
 struct ContactModel {
   Law law;
   int type_count = 1;
-  std::vector<typename Law::Params> pair_params;  // [type_i * type_count + type_j]
-  std::vector<typename Law::History> history;     // parallel to the neighbour list
+  std::vector<typename Law::Params> pair_params;   // [type_i * type_count + type_j]
+  std::vector<typename Law::History> history;      // parallel to the neighbour list
+  std::vector<typename Law::History> wall_history; // [particle * walls + wall]
+  const typename Law::Params& params(int type_i, int type_j) const { return pair_params[type_i * type_count + type_j]; }
 };
 
-using ContactModels = std::variant<ContactModel<LinearContact>, ContactModel<HertzMindlin>>;
+using ContactModels = ContactLaws::variant<ContactModel>;
+
+// The bond law's state: its materials and one history per bond.
+template <class Law>
+struct BondModel {
+  Law law;
+  std::vector<typename Law::Params> materials;
+  std::vector<typename Law::State> history;  // parallel to the bond list
+  const typename Law::Params& params(int material) const {
+    return materials.size() == 1 ? materials[0] : materials[static_cast<std::size_t>(material)];
+  }
+};
+
+using BondModels = BondLaws::variant<BondModel>;
 
 class Engine {
  public:
@@ -221,7 +245,6 @@ class Engine {
     std::vector<int> material;
     std::vector<double> rest_length;
     std::vector<int> state;                      // 0 intact, 1 broken
-    std::variant<std::vector<ContactBond::State>, std::vector<ElasticBond::State>> history;
     std::vector<int> pair;                       // index in the neighbour list, or -1
   };
   template <bool Measure>
@@ -235,14 +258,8 @@ class Engine {
   // `stiffness` (nullptr unless the stiffness_sum rule is on) accumulates each particle's
   // contact stiffnesses.
   template <class BondLaw, bool Measure>
-  void bond_forces(int thread, Vec3* force, Vec3* torque, double* stiffness, Totals& local);
-  template <class BondLaw>
-  const std::vector<typename BondLaw::Params>& bond_materials() const;
-  template <class BondLaw>
-  const typename BondLaw::Params& bond_params(std::size_t b) const;
-  // Calls f(BondLaw{}) with the configured bond law.
-  template <class F>
-  void with_bond_law(F&& f) const;
+  void bond_forces(BondModel<BondLaw>& model, int thread, Vec3* force, Vec3* torque, double* stiffness,
+                   Totals& local);
   template <class Law, bool Measure>
   void wall_forces(ContactModel<Law>& model, int thread, Vec3* force, Vec3* torque, double* stiffness,
                    Totals& local);
@@ -253,7 +270,7 @@ class Engine {
   // (|d| = distance > 0), and about particle k touching a wall at `distance` from it.
   ContactGeometry pair_geometry(std::size_t i, std::size_t j, const Vec3& d, double distance) const;
   ContactGeometry wall_geometry(std::size_t k, const Wall& wall, double distance) const;
-  const TypeParams& params_of_type(int type) const;
+  const Material& params_of_type(int type) const;
 
   Packing packing_;  // box, types, bonds and fields of the input; positions synced on demand
   EngineConfig config_;
@@ -269,11 +286,11 @@ class Engine {
   std::vector<BondBreak> breaks_;
   std::vector<std::vector<BondBreak>> thread_breaks_;  // per thread, this step
   std::vector<Wall> walls_;
-  std::vector<Vec3> wall_history_;                      // [particle * walls + wall] (contact law history)
   std::vector<Vec3> wall_force_;                        // per wall, last step
   std::vector<std::vector<Vec3>> thread_wall_force_;    // per thread, per wall
   NeighborList neighbors_;
   ContactModels model_;
+  BondModels bond_model_;
   std::vector<std::vector<Vec3>> thread_force_, thread_torque_;
   std::vector<std::vector<double>> thread_stiffness_;  // stiffness_sum rule: per thread, per particle
   // Several threads, pair contacts only: a force on a particle of a later thread's range.

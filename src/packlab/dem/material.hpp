@@ -1,24 +1,36 @@
-// Per-particle-type parameters of the linear contact model with local damping
-// (vem-void-expansion-method §2.1, doh-elastic-properties §2.1).
+// The material of one particle type: what every contact law may read about the particles it
+// acts between (vem-void-expansion-method §2.1, doh-elastic-properties §2.1,
+// bpm-inverse-opals eq. 5-10). Each property is declared once in material_parameters()
+// (name, unit, range, doc; the default is the initializer below); a contact law lists the
+// properties it reads (dem/contact/), and only those are validated for it.
 #pragma once
 
+#include <span>
 #include <string>
 #include <vector>
 
+#include "packlab/core/parameter.hpp"
+
 namespace packlab::dem {
 
-struct TypeParams {
+struct Material {
   double normal_stiffness = 1.0e2;  // k_n [N/m]
   double shear_stiffness = 1.0e1;   // k_s [N/m]
   double friction = 0.0;            // Coulomb coefficient mu [-]
   double density = 1.0e3;           // [kg/m^3] (used when the packing has none per particle)
   double damping = 0.7;             // local damping coefficient alpha [-], 0 <= alpha < 1
-  // Hertz-Mindlin contacts (bpm-inverse-opals eq. 5-10) only:
   double youngs_modulus = 0.0;      // E [Pa]
   double poisson_ratio = 0.25;      // nu [-]
   double restitution = 1.0;         // e [-], 0 < e <= 1
   double rolling_friction = 0.0;    // mu_r [-]
+  double work_of_adhesion = 0.0;    // W = 2 gamma [J/m^2]
+  double adhesion_range = 0.0;      // separation at which the attraction ends [m]
 };
+
+// Every property of Material, declared once. density and damping are read by the engine for
+// every law; the others by the laws that list them.
+std::span<const Parameter<Material>> material_parameters();
+const Parameter<Material>& material_parameter(std::string_view name);
 
 // How the stiffnesses of two particles make the stiffness of their contact.
 //   particle: PFC's particle stiffnesses in series, k = k_a k_b / (k_a + k_b) (the papers'
@@ -37,7 +49,8 @@ inline double combine_stiffness(double ka, double kb, StiffnessRule rule) {
   return rule == StiffnessRule::particle ? series : 2.0 * series;
 }
 
-// Validates ranges (InputError naming the type and key).
-void validate(const std::vector<TypeParams>& types);
+// Validates density and damping of every type, and the properties `law_properties` names
+// (InputError naming the type and key).
+void validate(const std::vector<Material>& types, std::span<const std::string_view> law_properties = {});
 
 }  // namespace packlab::dem

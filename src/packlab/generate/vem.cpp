@@ -24,9 +24,9 @@ double sphere_mass(double density, double r) { return density * 4.0 / 3.0 * std:
 
 // Stiffest value of LinearContact::stiffness over the contacts a particle of material `a` can
 // form with `a` and `b`.
-double stiffest_contact(const dem::TypeParams& a, const dem::TypeParams& b) {
+double stiffest_contact(const dem::Material& a, const dem::Material& b) {
   double k = 0.0;
-  for (const dem::TypeParams* other : {&a, &b}) {
+  for (const dem::Material* other : {&a, &b}) {
     k = std::max(k, dem::combine_stiffness(a.normal_stiffness, other->normal_stiffness, dem::StiffnessRule::particle));
     k = std::max(k, dem::combine_stiffness(a.shear_stiffness, other->shear_stiffness, dem::StiffnessRule::particle));
   }
@@ -146,7 +146,7 @@ void VemParams::validate() const {
   require(blowup_steps >= 1 && blowup_steps <= 10000, "blowup_steps", blowup_steps, "an integer in [1, 10000]");
   require(void_radius_ratio > 0.0 && void_radius_ratio <= 1.0, "void_radius_ratio", void_radius_ratio,
           "in (0, 1] (initial void radius / r_S)");
-  dem::validate({structural_material, void_material});
+  dem::validate({structural_material, void_material}, dem::LinearContact::properties);
   require(contact_eps >= 0.0 && contact_eps < 1.0, "contact_eps", contact_eps, "in [0, 1)");
   require(relax_tolerance >= 0.0 && std::isfinite(relax_tolerance), "relax.tolerance", relax_tolerance,
           ">= 0 (0 = off; with relax.overlap = 0 every relaxation runs relax.max_steps)");

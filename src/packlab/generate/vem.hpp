@@ -70,8 +70,8 @@ struct VemParams {
   int blowup_steps = 10;             // m [-]
   double void_radius_ratio = 0.005;  // r_V0 / r_S, initial void radius and its growth per cycle [-]
   // Table 1 (§3: k_n,S = 1e3, k_s,S = 1e-2, k_n,V = 1e2, k_s,V = 1e-2 N/m, rho_V = rho_S/10).
-  dem::TypeParams structural_material{1.0e3, 1.0e-2, 0.0, 3690.0, 0.7};
-  dem::TypeParams void_material{1.0e2, 1.0e-2, 0.0, 369.0, 0.7};
+  dem::Material structural_material{1.0e3, 1.0e-2, 0.0, 3690.0, 0.7};
+  dem::Material void_material{1.0e2, 1.0e-2, 0.0, 369.0, 0.7};
   double contact_eps = 0.01;         // CN contact distance (1 + eps) 2 r_S [-]
   double relax_tolerance = 1e-2;     // unbalanced force ratio ending a relaxation [-]
   double relax_overlap = 1e-5;       // ... or largest overlap / (r_i + r_j) ending it [-]

@@ -15,8 +15,8 @@
 
 namespace packlab::mechanics {
 
-std::vector<dem::TypeParams> opal_particle_types(const OpalMaterials& m) {
-  dem::TypeParams silica;
+std::vector<dem::Material> opal_particle_types(const OpalMaterials& m) {
+  dem::Material silica;
   silica.youngs_modulus = m.silica_youngs_modulus;
   silica.poisson_ratio = m.silica_poisson_ratio;
   silica.density = m.silica_density;
@@ -24,11 +24,11 @@ std::vector<dem::TypeParams> opal_particle_types(const OpalMaterials& m) {
   silica.friction = m.friction;
   silica.rolling_friction = m.rolling_friction;
   silica.damping = m.damping;
-  dem::TypeParams titania = silica;
+  dem::Material titania = silica;
   titania.youngs_modulus = m.titania_youngs_modulus;
   titania.poisson_ratio = m.titania_poisson_ratio;
   titania.density = m.titania_density;
-  std::vector<dem::TypeParams> types(5, silica);
+  std::vector<dem::Material> types(5, silica);
   types[static_cast<std::size_t>(particle_type::coating)] = titania;
   return types;
 }
@@ -276,8 +276,7 @@ CompressionResult run_compression(const Packing& bonded_model, const Compression
   dem::EngineConfig config;
   config.contact_law = "hertz_mindlin";
   config.types = options.types;
-  config.bond_law = "elastic";
-  config.elastic_bond_materials = options.bond_materials;
+  config.bond_materials = options.bond_materials;
   config.time_step = options.time_step;
   config.time_step_safety = options.time_step_safety;
   config.threads = options.threads;

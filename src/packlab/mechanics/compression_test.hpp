@@ -29,7 +29,7 @@
 //    plate force / A with A = the periodic cross-section Lx Ly, or the x-y extent of the spheres
 //    when the sides are open. Both compressive positive.
 //  - Quasi-static: the run is dynamic; the rate must be low enough that the result does not
-//    depend on it (DESIGN.md numerical notes). Local damping (TypeParams::damping) removes the
+//    depend on it (DESIGN.md numerical notes). Local damping (Material::damping) removes the
 //    elastic waves; the report carries the largest kinetic / strain energy ratio seen.
 //
 // Young's modulus (the "linear slope of the stress-strain diagram", §3.1.2), method
@@ -69,13 +69,13 @@ struct OpalMaterials {
   double damping = 0.7;
   double bond_radius_ratio = 1.0;          // R_b / min(r_i, r_j)
   double relaxation_time = 1e-9;           // [s] (1 % stiffness per 1e-11 s)
-  bool compressive_breakage = false;       // eq. 16 for compressed bonds too (dem/bond_law.hpp)
+  bool compressive_breakage = false;       // eq. 16 for compressed bonds too (dem/bond/elastic_bond.hpp)
 };
 
 // Per particle type (structural, void, pore, coating, substrate: core/packing.hpp) Hertz-Mindlin
 // parameters, and per bond material (generate/opal.hpp: silica, titania, substrate) elastic
 // bond parameters. Substrate particles and substrate-substrate bonds take silica's values.
-std::vector<dem::TypeParams> opal_particle_types(const OpalMaterials& m);
+std::vector<dem::Material> opal_particle_types(const OpalMaterials& m);
 std::vector<dem::ElasticBond::Params> opal_bond_materials(const OpalMaterials& m);
 
 struct CompressionPoint {
@@ -118,7 +118,7 @@ struct ModulusFit {
 };
 
 struct CompressionOptions {
-  std::vector<dem::TypeParams> types;                   // per particle type (one entry: all)
+  std::vector<dem::Material> types;                   // per particle type (one entry: all)
   std::vector<dem::ElasticBond::Params> bond_materials; // per bond material (one entry: all)
   double strain_rate = 1e7;       // [1/s]
   double max_strain = 0.05;       // [-]

@@ -106,7 +106,7 @@ void validate(const ShearTestOptions& o) {
 dem::EngineConfig shear_engine_config(const ShearTestOptions& o) {
   dem::EngineConfig c;
   c.contact_law = "linear";
-  dem::TypeParams t;
+  dem::Material t;
   t.normal_stiffness = o.normal_stiffness;
   t.shear_stiffness = o.shear_stiffness;
   t.friction = o.friction;
@@ -117,8 +117,7 @@ dem::EngineConfig shear_engine_config(const ShearTestOptions& o) {
   // The bond acts with the contact stiffness of the pair (PFC: the linear contact law extended
   // into tension), i.e. the particle stiffnesses in series under the particle rule.
   const double factor = c.stiffness_rule == dem::StiffnessRule::particle ? 0.5 : 1.0;
-  c.bond_law = dem::ContactBond::name;
-  c.bond_materials = {
+  c.bond_materials = dem::BondMaterialList<dem::ContactBond>{
       dem::ContactBond::Params{factor * o.normal_stiffness, factor * o.shear_stiffness, o.normal_strength,
                                o.shear_strength}};
   c.time_step_safety = o.time_step_safety;

@@ -1,72 +1,8 @@
-// Bond laws: small value types like the contact laws (contact_law.hpp), evaluated in the
-// engine's bond loop over the bond list (bonded particles may separate beyond the neighbour
-// list's range). A law provides
-//   struct Params;                      per bond material
-//   using State = ...;                  per-bond history
-//   static double stiffness(const Params&, double radius_i, double radius_j, double rest_length);
-//   static BondForce evaluate(const ContactGeometry&, const Params&, State&);
-// ContactGeometry::overlap is negative when the bonded particles are apart.
 #pragma once
 
-#include <algorithm>
-#include <cmath>
-#include <numbers>
-
-#include "packlab/dem/contact_law.hpp"
+#include "packlab/dem/bond/bond_law.hpp"
 
 namespace packlab::dem {
-
-struct BondForce {
-  Vec3 force_on_j;   // [N]
-  Vec3 torque_i;     // [N m]
-  Vec3 torque_j;     // [N m]
-  double energy;     // [J]
-  bool failed;       // a breakage criterion was met this step
-  bool broken;       // the bond is gone from this step on (the force is then zero)
-};
-
-// PFC contact bond (doh-elastic-properties §2.1): the linear contact law continued into
-// tension, F_n = k_n U_n with U_n < 0 when apart (eq. 1), incremental shear dF_s = -k_s dU_s
-// (eq. 2) without a Coulomb limit (friction is superseded while bonded). It breaks when the
-// tension exceeds the normal strength F_nB or the shear force the shear strength F_sB; the
-// pair then interacts through the contact law.
-struct ContactBond {
-  static constexpr const char* name = "contact";
-  struct Params {
-    double normal_stiffness;  // k_n [N/m]
-    double shear_stiffness;   // k_s [N/m]
-    double normal_strength;   // F_nB [N] (tension)
-    double shear_strength;    // F_sB [N]
-  };
-  using State = Vec3;  // shear force on j [N]
-
-  static double stiffness(const Params& p, double /*radius_i*/, double /*radius_j*/, double /*rest_length*/) {
-    return std::max(p.normal_stiffness, p.shear_stiffness);
-  }
-
-  static BondForce evaluate(const ContactGeometry& g, const Params& p, State& shear_force) {
-    const Vec3& n = g.normal;
-    const double normal_force = p.normal_stiffness * g.overlap;  // negative = tension
-    Vec3 fs = rotate_into_plane(shear_force, n, g.mean_spin, g.dt);
-    const Vec3 vt = g.relative_velocity - dot(g.relative_velocity, n) * n;
-    fs -= (p.shear_stiffness * g.dt) * vt;
-    BondForce out{};
-    out.failed = -normal_force > p.normal_strength || norm2(fs) > p.shear_strength * p.shear_strength;
-    out.broken = out.failed;
-    if (out.broken) {
-      shear_force = Vec3{};
-      return out;
-    }
-    shear_force = fs;
-    const Vec3 moment_arm = cross(n, fs);
-    out.force_on_j = normal_force * n + fs;
-    out.torque_i = -g.branch_i * moment_arm;
-    out.torque_j = -g.branch_j * moment_arm;
-    out.energy = 0.5 * normal_force * g.overlap +
-                 (p.shear_stiffness > 0.0 ? 0.5 * norm2(fs) / p.shear_stiffness : 0.0);
-    return out;
-  }
-};
 
 // Elastic solid bond (bpm-inverse-opals eq. 11-17, the parallel-bond model of Potyondy and
 // Cundall as in MUSEN): a cylinder of radius R_b = radius_ratio * min(r_i, r_j), cross-section
@@ -87,16 +23,28 @@ struct ContactBond {
 // (the paper's 1 % per 1e-11 s over 1 ns: 100 steps of 1 % of the initial stiffness), then it
 // is removed.
 struct ElasticBond {
-  static constexpr const char* name = "elastic";
+  static constexpr std::string_view name = "elastic";
   struct Params {
-    double youngs_modulus;       // E_b [Pa]
-    double poisson_ratio;        // nu_b [-]
-    double normal_strength;      // sigma_max [Pa]
-    double shear_strength;       // tau_max [Pa]
+    double youngs_modulus = 0.0;  // E_b [Pa] (must be given)
+    double poisson_ratio = 0.25;  // nu_b [-]
+    double normal_strength = std::numeric_limits<double>::infinity();  // sigma_max [Pa]
+    double shear_strength = std::numeric_limits<double>::infinity();   // tau_max [Pa]
     double radius_ratio = 1.0;   // R_b / min(r_i, r_j) [-]
     double relaxation_time = 1e-9;  // [s]
     bool compressive_breakage = false;  // eq. 16 also for compressed bonds (see above)
   };
+  static constexpr std::array<Parameter<Params>, 7> parameters{{
+      {"youngs_modulus", "Pa", "Bond Young's modulus E_b", &Params::youngs_modulus, ranges::positive},
+      {"poisson_ratio", "", "Bond Poisson's ratio nu_b", &Params::poisson_ratio, Range{-1.0, 0.5, true, true}},
+      {"normal_strength", "Pa", "Normal strength sigma_max (eq. 16)", &Params::normal_strength,
+       ranges::positive_or_inf},
+      {"shear_strength", "Pa", "Shear strength tau_max (eq. 17)", &Params::shear_strength, ranges::positive_or_inf},
+      {"radius_ratio", "", "Bond radius R_b / min(r_i, r_j)", &Params::radius_ratio, Range{0.0, 1.0, true, false}},
+      {"relaxation_time", "s", "Time over which a failed bond's stiffness decays to zero", &Params::relaxation_time,
+       ranges::positive},
+      {"compressive_breakage", "", "Apply eq. 16 to compressed bonds too (MUSEN: only to stretched ones)",
+       &Params::compressive_breakage},
+  }};
   struct State {
     Vec3 tangential{};            // xi_t [m]
     Vec3 torsion{};               // M_n on j [N m]
@@ -111,6 +59,9 @@ struct ElasticBond {
     const double rb = bond_radius(p, radius_i, radius_j);
     return p.youngs_modulus * std::numbers::pi * rb * rb / rest_length;
   }
+
+  static constexpr bool uses_rest_length = true;  // needs the bond's initial length > 0
+  static bool failed(const State& s) { return s.failed_at >= 0.0; }
 
   static BondForce evaluate(const ContactGeometry& g, const Params& p, State& s) {
     BondForce out{};

@@ -1,0 +1,120 @@
+// The engine's whole dynamic state in a binary checkpoint (Engine::save_state / load_state).
+#include <fmt/format.h>
+
+#include "packlab/core/binary_io.hpp"
+#include "packlab/core/error.hpp"
+#include "packlab/dem/engine.hpp"
+
+namespace packlab::dem {
+
+namespace {
+constexpr std::uint64_t checkpoint_magic = 0x324B43454D454450ULL;  // "PDEMECK2" (laws tagged by name)
+}
+
+void Engine::save_state(std::ostream& out) const {
+  binary::write(out, checkpoint_magic);
+  binary::write(out, static_cast<std::uint64_t>(particles_.size()));
+  // The laws by name (a tag that survives reordering the registries).
+  binary::write_string(out, config_.contact_law);
+  binary::write_string(out, bond_law_name(config_.bond_materials));
+  binary::write(out, step_);
+  binary::write(out, time_);
+  binary::write(out, dt_);
+  const auto& P = particles_;
+  binary::write_vector(out, P.position);
+  binary::write_vector(out, P.velocity);
+  binary::write_vector(out, P.angular_velocity);
+  binary::write_vector(out, P.force);
+  binary::write_vector(out, P.torque);
+  binary::write_vector(out, P.radius);
+  binary::write_vector(out, P.type);
+  binary::write_vector(out, P.fixed);
+  binary::write_vector(out, density_);
+  binary::write_vector(out, damping_);
+  binary::write_vector(out, original_index_);
+  binary::write_vector(out, wraps_);
+  binary::write_vector(out, bonds_.state);
+  std::visit([&](const auto& bonds) { binary::write_vector(out, bonds.history); }, bond_model_);
+  binary::write(out, static_cast<std::uint64_t>(broken_bonds_));
+  binary::write_vector(out, walls_);
+  std::visit([&](const auto& model) { binary::write_vector(out, model.wall_history); }, model_);
+  binary::write_vector(out, wall_force_);
+  neighbors_.save(out);
+  std::visit([&](const auto& model) { binary::write_vector(out, model.history); }, model_);
+  binary::write_vector(out, breaks_);
+}
+
+void Engine::load_state(std::istream& in) {
+  std::uint64_t magic = 0, n = 0;
+  binary::read(in, magic, "header");
+  if (magic != checkpoint_magic) fail_input("checkpoint: not a packlab engine state of this version (bad header)");
+  binary::read(in, n, "particle count");
+  if (n != particles_.size())
+    fail_input(fmt::format("checkpoint holds {} particles, the engine {}", n, particles_.size()));
+  std::string contact_law, bond_law;
+  binary::read_string(in, contact_law, "contact law");
+  binary::read_string(in, bond_law, "bond law");
+  if (contact_law != config_.contact_law)
+    fail_input(fmt::format("checkpoint was written with contact law '{}', the engine uses '{}'", contact_law,
+                           config_.contact_law));
+  if (bond_law != bond_law_name(config_.bond_materials))
+    fail_input(fmt::format("checkpoint was written with bond law '{}', the engine uses '{}'", bond_law,
+                           bond_law_name(config_.bond_materials)));
+  binary::read(in, step_, "step");
+  binary::read(in, time_, "time");
+  binary::read(in, dt_, "time step");
+  auto& P = particles_;
+  binary::read_vector(in, P.position, "positions");
+  binary::read_vector(in, P.velocity, "velocities");
+  binary::read_vector(in, P.angular_velocity, "angular velocities");
+  binary::read_vector(in, P.force, "forces");
+  binary::read_vector(in, P.torque, "torques");
+  binary::read_vector(in, P.radius, "radii");
+  binary::read_vector(in, P.type, "types");
+  binary::read_vector(in, P.fixed, "fixed flags");
+  binary::read_vector(in, density_, "densities");
+  binary::read_vector(in, damping_, "damping");
+  binary::read_vector(in, original_index_, "particle order");
+  binary::read_vector(in, wraps_, "periodic images");
+  std::vector<int> bond_state;
+  binary::read_vector(in, bond_state, "bond states");
+  // Reads the history vector `member` of the law model held by `models`; returns its size.
+  const auto read_histories = [&](auto& models, auto member, const char* what) {
+    return std::visit(
+        [&](auto& model) {
+          auto& v = member(model);
+          binary::read_vector(in, v, what);
+          return v.size();
+        },
+        models);
+  };
+  const std::size_t history_size = read_histories(bond_model_, [](auto& m) -> auto& { return m.history; }, "bond histories");
+  std::uint64_t broken = 0;
+  binary::read(in, broken, "broken bond count");
+  if (wraps_.size() != n || bond_state.size() != bonds_.i.size() || history_size != bonds_.i.size())
+    fail_input("checkpoint does not match this packing's particles and bonds");
+  bonds_.state = std::move(bond_state);
+  broken_bonds_ = broken;
+  binary::read_vector(in, walls_, "walls");
+  const std::size_t wall_history_size =
+      read_histories(model_, [](auto& m) -> auto& { return m.wall_history; }, "wall contact histories");
+  binary::read_vector(in, wall_force_, "wall forces");
+  if (wall_history_size != n * walls_.size() || wall_force_.size() != walls_.size())
+    fail_input("checkpoint is damaged: wall data do not match");
+  for (auto* v : {&P.position, &P.velocity, &P.angular_velocity, &P.force, &P.torque})
+    if (v->size() != n) fail_input("checkpoint is damaged: array sizes differ");
+  if (P.radius.size() != n || P.type.size() != n || P.fixed.size() != n || density_.size() != n ||
+      damping_.size() != n || original_index_.size() != n)
+    fail_input("checkpoint is damaged: array sizes differ");
+  for (std::size_t k = 0; k < n; ++k) update_mass(k);
+  masses_changed();
+  neighbors_.load(in);
+  std::visit([&](auto& model) { binary::read_vector(in, model.history, "contact histories"); }, model_);
+  if (neighbors_.particle_count() != n || std::visit([&](auto& m) { return m.history.size(); }, model_) !=
+                                              neighbors_.pair_count())
+    fail_input("checkpoint is damaged: contact histories do not match the neighbour list");
+  binary::read_vector(in, breaks_, "bond breaks");
+  mark_bonded_pairs();
+}
+
+}  // namespace packlab::dem

@@ -1,0 +1,74 @@
+// Contact laws: small value types with one call signature (STYLE.md item 2), in one file each
+// under dem/contact/ and registered in dem/contact/registry.hpp.
+//
+// A law provides
+//   static constexpr std::string_view name;     the user-facing name ("linear")
+//   static constexpr std::array<std::string_view, K> properties;
+//                                               the Material properties it reads (dem/material.hpp);
+//                                               validated for every particle type
+//   struct Params;                              per pair of particle types, from mix()
+//   using History = ...;                        per-contact state carried between steps
+//                                               (value-initialized when a contact starts)
+//   static Params mix(const Material& a, const Material& b, StiffnessRule rule);
+//   static double reach(const Params&);         how far beyond touching (centre distance
+//                                               r_i + r_j + reach) the law still acts [m];
+//                                               0 for laws that act only on overlap
+//   static double stiffness(const Params&, double radius);  for the global time-step rule
+//   static PairForce evaluate(const ContactGeometry&, const Params&, History&);
+//                                               called for every listed pair closer than
+//                                               r_i + r_j + reach(params); the geometry's
+//                                               overlap is negative for a pair apart
+// The engine instantiates one pair loop per law; adding a law touches no loop
+// (docs/engine.md, "Adding a contact law").
+#pragma once
+
+#include <array>
+#include <cmath>
+#include <numbers>
+#include <string_view>
+
+#include "packlab/core/vec3.hpp"
+#include "packlab/dem/material.hpp"
+
+namespace packlab::dem {
+
+// What the engine knows about an interacting pair at time t.
+struct ContactGeometry {
+  Vec3 normal;             // unit vector from particle i to particle j
+  double overlap;          // r_i + r_j - distance [m]: > 0 touching, < 0 apart (bonds, laws with reach)
+  double branch_i;         // distance from centre i to the contact point [m]
+  double branch_j;         // distance from centre j to the contact point [m]
+  Vec3 relative_velocity;  // velocity of j's contact point relative to i's [m/s]
+  Vec3 mean_spin;          // (omega_i + omega_j) / 2 [rad/s]
+  double dt;               // time step [s]
+  double radius_i = 0.0;   // [m]
+  double radius_j = 0.0;   // [m]
+  double effective_mass = 0.0;  // m_i m_j / (m_i + m_j) [kg] (m_i alone against a fixed j)
+  Vec3 spin_i{}, spin_j{};      // angular velocities [rad/s]
+  // Bonds only:
+  Vec3 relative_spin{};         // omega_j - omega_i [rad/s]
+  double rest_length = 0.0;     // initial bond length [m]
+  double time = 0.0;            // simulated time [s]
+};
+
+struct PairForce {
+  Vec3 force_on_j;      // the force on i is its negative [N]
+  Vec3 torque_i;        // [N m]
+  Vec3 torque_j;        // [N m]
+  double normal_force;  // magnitude of the normal part (positive = compressive) [N]
+  double energy;        // elastic energy stored in the contact [J]
+  double stiffness;     // current tangent stiffness, for the contacts time-step rule [N/m]
+};
+
+// Carries a tangential vector from the last step into the current contact plane: removes its
+// component along the new normal (the tilt of the pair) and turns it about the normal by the
+// mean spin of the pair (the twist). Both are first-order rotations, as LAMMPS's granular
+// history does: the magnitude changes only at second order in the rotation per step
+// (~1e-12 relative for typical steps), with no sqrt or division in the pair loop.
+inline Vec3 rotate_into_plane(Vec3 tangential, const Vec3& normal, const Vec3& mean_spin, double dt) {
+  tangential -= dot(tangential, normal) * normal;
+  tangential += (dot(mean_spin, normal) * dt) * cross(normal, tangential);
+  return tangential;
+}
+
+}  // namespace packlab::dem

@@ -1,0 +1,52 @@
+#pragma once
+
+#include "packlab/dem/contact/contact_law.hpp"
+
+namespace packlab::dem {
+
+// Linear spring contact, PFC style (vem-void-expansion-method eq. 1-2,
+// doh-elastic-properties §2.1): F_n = k_n U_n; shear force built from increments
+// dF_s = -k_s dU_s, rotated with the contact plane, limited by Coulomb |F_s| <= mu F_n.
+struct LinearContact {
+  static constexpr std::string_view name = "linear";
+  static constexpr std::array<std::string_view, 3> properties{"normal_stiffness", "shear_stiffness", "friction"};
+  struct Params {
+    double normal_stiffness;  // [N/m]
+    double shear_stiffness;   // [N/m]
+    double friction;          // [-]
+  };
+  using History = Vec3;  // shear force on j [N]
+
+  static Params mix(const Material& a, const Material& b, StiffnessRule rule) {
+    return {combine_stiffness(a.normal_stiffness, b.normal_stiffness, rule),
+            combine_stiffness(a.shear_stiffness, b.shear_stiffness, rule), std::min(a.friction, b.friction)};
+  }
+  static constexpr double reach(const Params& /*p*/) { return 0.0; }
+  static double stiffness(const Params& p, double /*radius*/) {
+    return std::max(p.normal_stiffness, p.shear_stiffness);
+  }
+
+  static PairForce evaluate(const ContactGeometry& g, const Params& p, History& shear_force) {
+    const Vec3& n = g.normal;
+    const double normal_force = p.normal_stiffness * g.overlap;  // eq. 1
+    Vec3 fs = rotate_into_plane(shear_force, n, g.mean_spin, g.dt);
+    const Vec3 vt = g.relative_velocity - dot(g.relative_velocity, n) * n;
+    fs -= (p.shear_stiffness * g.dt) * vt;  // eq. 2, dU_s = v_t dt
+    const double limit = p.friction * normal_force;
+    const double fs2 = norm2(fs);
+    if (fs2 > limit * limit) fs *= limit / std::sqrt(fs2);  // Coulomb slip
+    shear_force = fs;
+    const Vec3 moment_arm = cross(n, fs);
+    PairForce out;
+    out.force_on_j = normal_force * n + fs;
+    out.torque_i = -g.branch_i * moment_arm;
+    out.torque_j = -g.branch_j * moment_arm;
+    out.normal_force = normal_force;
+    out.energy = 0.5 * normal_force * g.overlap +
+                 (p.shear_stiffness > 0.0 ? 0.5 * norm2(fs) / p.shear_stiffness : 0.0);
+    out.stiffness = std::max(p.normal_stiffness, p.shear_stiffness);
+    return out;
+  }
+};
+
+}  // namespace packlab::dem

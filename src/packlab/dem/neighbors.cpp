@@ -1,0 +1,55 @@
+// The neighbour list seen by the engine: rebuilt with the contact histories carried over, and
+// the listed pairs that a bond holds (the contact law is off for them).
+#include <algorithm>
+#include <cmath>
+
+#include "packlab/dem/engine.hpp"
+
+namespace packlab::dem {
+
+void Engine::refresh_neighbors() {
+  neighbors_.build(packing_.box, particles_.position, particles_.radius, threads_, &wraps_);
+  std::visit(
+      [&](auto& model) {
+        using History = typename std::decay_t<decltype(model.law)>::History;
+        std::vector<History> remapped(neighbors_.pair_count(), History{});
+        const auto& previous = neighbors_.previous_index();
+        for (std::size_t p = 0; p < remapped.size(); ++p)
+          if (previous[p] >= 0 && static_cast<std::size_t>(previous[p]) < model.history.size())
+            remapped[p] = model.history[previous[p]];
+        model.history.swap(remapped);
+      },
+      model_);
+  mark_bonded_pairs();
+}
+
+std::array<int, 3> Engine::bond_image_now(std::size_t b) const {
+  const auto& wi = wraps_[static_cast<std::size_t>(bonds_.i[b])];
+  const auto& wj = wraps_[static_cast<std::size_t>(bonds_.j[b])];
+  return {bonds_.image[b][0] + wj[0] - wi[0], bonds_.image[b][1] + wj[1] - wi[1], bonds_.image[b][2] + wj[2] - wi[2]};
+}
+
+void Engine::mark_bonded_pairs() {
+  pair_bonded_.assign(neighbors_.pair_count(), 0);
+  const auto& partner = neighbors_.partner();
+  const auto& image = neighbors_.image();
+  for (std::size_t b = 0; b < bonds_.i.size(); ++b) {
+    bonds_.pair[b] = -1;
+    if (bonds_.state[b] != 0) continue;
+    auto s = bond_image_now(b);
+    int i = bonds_.i[b], j = bonds_.j[b];
+    if (j < i) {
+      std::swap(i, j);
+      s = {-s[0], -s[1], -s[2]};
+    }
+    if (std::abs(s[0]) > 1 || std::abs(s[1]) > 1 || std::abs(s[2]) > 1) continue;  // out of range
+    const int code = image_code(s[0], s[1], s[2]);
+    for (int p = neighbors_.first(i); p < neighbors_.first(i + 1); ++p)
+      if (partner[p] == j && image[p] == code) {
+        bonds_.pair[b] = p;
+        pair_bonded_[p] = 1;
+      }
+  }
+}
+
+}  // namespace packlab::dem
