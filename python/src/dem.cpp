@@ -9,6 +9,7 @@
 #include "packlab/core/error.hpp"
 #include "packlab/dem/engine.hpp"
 #include "packlab/dem/relax.hpp"
+#include "packlab/io/options.hpp"
 
 namespace packlab::python {
 
@@ -335,16 +336,27 @@ force (M x 3, force on j [N]).)doc")
           "Diagnostics of every check as a dict of arrays (the columns of `packlab relax --log`).")
       .def("__repr__", [](const RelaxOutcome& r) { return fmt::format("<RelaxResult: {}>", r.reason); });
 
+  io::RelaxRun relax_defaults;
+  static const std::string relax_doc = R"doc(
+`packlab relax` from Python: relaxes a copy of the packing with the contact law and local
+damping until the mean unbalanced force ratio falls below `tolerance` (0 = run exactly `steps`
+steps) or `steps` steps ran; returns a RelaxResult (packing, steps, converged, reason,
+time_step, last, history). `materials` (one Material per particle type) replaces the material
+keywords. The GIL is released while it runs; progress(step, total_steps, diagnostics) is called
+with the GIL held at most every progress_interval seconds and once at the end; an exception in
+it (or Ctrl-C) stops the run.
+)doc" + keywords_doc(io::relax_options(relax_defaults));
   m.def(
       "relax",
-      [](const Packing& packing, double normal_stiffness, double shear_stiffness, double friction, double damping,
-         double density, const std::string& stiffness_rule, double time_step, double time_step_safety, long steps,
-         double tolerance, long check_interval, int threads, const std::string& contact_law,
-         std::optional<std::vector<Material>> materials, py::object progress, double progress_interval) {
-        const EngineConfig c =
-            make_config(contact_law, normal_stiffness, shear_stiffness, friction, density, damping, 0.0, 0.25, 1.0,
-                        0.0, materials, stiffness_rule, time_step, time_step_safety, "global", 0.0, 0.2, "contact",
-                        std::nullopt, threads);
+      [](const Packing& packing, std::optional<std::vector<Material>> materials, py::object progress,
+         double progress_interval, const py::kwargs& kwargs) {
+        io::RelaxRun run;
+        apply_keywords(io::relax_options(run), kwargs, "relax");
+        EngineConfig c = run.config();
+        if (materials) c.types = *materials;
+        const long steps = run.relax.max_steps;
+        const double tolerance = run.relax.tolerance;
+        const long check_interval = run.relax.check_interval;
         std::unique_ptr<Engine> engine;
         {
           py::gil_scoped_release nogil;
@@ -361,21 +373,8 @@ force (M x 3, force on j [N]).)doc")
         out.history = r.history;
         return out;
       },
-      py::arg("packing"), py::kw_only(), py::arg("normal_stiffness") = 1e2, py::arg("shear_stiffness") = 1e1,
-      py::arg("friction") = 0.0, py::arg("damping") = 0.7, py::arg("density") = 1e3,
-      py::arg("stiffness_rule") = "particle", py::arg("time_step") = 0.0, py::arg("time_step_safety") = 0.2,
-      py::arg("steps") = 100000, py::arg("tolerance") = 1e-3, py::arg("check_interval") = 100,
-      py::arg("threads") = 0, py::arg("contact_law") = "linear", py::arg("materials") = py::none(),
-      py::arg("progress") = py::none(), py::arg("progress_interval") = 0.5, R"doc(
-`packlab relax` from Python: relaxes a copy of the packing with the linear contact law and
-local damping until the mean unbalanced force ratio falls below `tolerance` (0 = run exactly
-`steps` steps) or `steps` steps ran; returns a RelaxResult (packing, steps, converged, reason,
-time_step, last, history). Keywords as the command-line options: normal_stiffness,
-shear_stiffness [N/m], friction, damping, density [kg/m^3], stiffness_rule, time_step [s],
-time_step_safety, steps, tolerance, check_interval, threads. The GIL is released while it runs;
-progress(step, total_steps, diagnostics) is called with the GIL held at most every
-progress_interval seconds and once at the end; an exception in it (or Ctrl-C) stops the run.
-)doc");
+      py::arg("packing"), py::kw_only(), py::arg("materials") = py::none(), py::arg("progress") = py::none(),
+      py::arg("progress_interval") = 0.5, relax_doc.c_str());
 }
 
 }  // namespace packlab::python

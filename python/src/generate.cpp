@@ -4,10 +4,9 @@
 #include "packlab/generate/bonding.hpp"
 #include "packlab/generate/lattice.hpp"
 #include "packlab/generate/random.hpp"
+#include "packlab/io/options.hpp"
 
 namespace packlab::python {
-
-void bind_generate_later(py::module_& m);  // generate_more.cpp: vem, ls, scrm, shake
 
 void bind_generate(py::module_& m) {
   m.def(
@@ -50,25 +49,27 @@ box of nominal volume fraction `phi` (overlaps allowed), or, with no_overlap=Tru
 sequential addition (phi < 0.36). periodic: per axis; aspect: box edge ratios; seed: the
 random seed (the same seed gives the same packing as the command line).
 )doc");
-  m.def(
-      "bond",
-      [](const Packing& packing, const std::string& model, double eps, double cutoff_ratio, int threads) {
-        generate::BondingOptions options;
-        options.cutoff_ratio = generate::bonding_cutoff_ratio(model, eps, cutoff_ratio);
-        options.threads = threads;
-        Packing bonded = packing;
-        py::gil_scoped_release nogil;
-        generate::add_bonds(bonded, options);
-        return bonded;
-      },
-      py::arg("packing"), py::kw_only(), py::arg("model") = "contact", py::arg("eps") = 0.01,
-      py::arg("cutoff_ratio") = 1.75, py::arg("threads") = 1, R"doc(
+  io::BondOptions bond_defaults;
+  static const std::string bond_doc = R"doc(
 `packlab bond`: a copy of `packing` with a bond between every pair closer than the model's
 cutoff, across periodic boundaries. model "contact": d < (1 + eps)(r_i + r_j) (PFC contact
 bonds, doh-elastic-properties §2.1); "beam": d < cutoff_ratio (r_i + r_j) (elastic beam bonds
 within 1.75 d, bpm-inverse-opals §2.1). Bonds are saved in .vtu files.
-)doc");
-  bind_generate_later(m);
+)doc" + keywords_doc(io::bond_options(bond_defaults));
+  m.def(
+      "bond",
+      [](const Packing& packing, const py::kwargs& kwargs) {
+        io::BondOptions o;
+        apply_keywords(io::bond_options(o), kwargs, "bond").validate();
+        generate::BondingOptions bonding;
+        bonding.cutoff_ratio = generate::bonding_cutoff_ratio(o.model, o.eps, o.cutoff_ratio);
+        bonding.threads = o.threads;
+        Packing bonded = packing;
+        py::gil_scoped_release nogil;
+        generate::add_bonds(bonded, bonding);
+        return bonded;
+      },
+      py::arg("packing"), bond_doc.c_str());
 }
 
 }  // namespace packlab::python

@@ -18,12 +18,12 @@ void add_info(CLI::App& app);
 void add_convert(CLI::App& app);
 void add_relax(CLI::App& app);
 CLI::App* add_analyze(CLI::App& app);
-// Issue #4: LS growth, shaking, SCRM, RDF (add_analyze_rdf adds `rdf` to the analyze command).
+// LS growth, shaking, SCRM, RDF (add_analyze_rdf adds `rdf` to the analyze command).
 void add_generate_ls(CLI::App& generate);
 void add_generate_scrm(CLI::App& generate);
 void add_shake(CLI::App& app);
 void add_analyze_rdf(CLI::App& analyze);
-// Bonded models and mechanical tests (issues #6, #7): `bond`, `build opal`, `generate fba`,
+// Bonded models and mechanical tests: `bond`, `build opal`, `generate fba`,
 // `test shear|compress`, `calibrate shear|compress`.
 void add_bond(CLI::App& app);
 void add_generate_fba(CLI::App& generate);
@@ -36,6 +36,13 @@ void add_calibrate_compress(CLI::App& calibrate);
 // Config-file references (io/config.hpp schemas) of the commands that read one, and the
 // `config-keys` command printing them all.
 std::string vem_config_reference();
+std::string ls_config_reference();
+std::string scrm_config_reference();
+std::string shake_config_reference();
+std::string fba_config_reference();
+std::string opal_config_reference();
+std::string relax_config_reference();
+std::string bond_config_reference();
 std::string shear_config_reference();     // also read by `calibrate shear`
 std::string compress_config_reference();  // also read by `calibrate compress`
 std::string config_reference();
