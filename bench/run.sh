@@ -37,6 +37,10 @@ fi
 quick=${BENCH_QUICK:-0}
 run() { echo; echo "== $* =="; "$BUILD/$@"; }
 run bench_analyze 1
+# Micro-benchmarks (Google Benchmark; rates per CPU second): pair kernel of every contact and
+# bond law, neighbour build, LS event, shake trial, one engine step. The installed Google
+# Benchmark (1.7) takes the minimum time as plain seconds ("0.2s" is for >= 1.8).
+run bench_micro --benchmark_min_time=0.2
 run bench_neighbor 8000 2000 0.4 200 1   # neighbour-list build, 10,000 particles (VEM stage I)
 run bench_neighbor 8000 2000 0.4 200 2
 run bench_ls 10000 0.04          # LS to jamming, 10^4 monodisperse (PackingGeneration: 87 s at rate 1e-2)

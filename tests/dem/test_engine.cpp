@@ -317,6 +317,10 @@ TEST(Engine, RejectsBadParameters) {
   config.types = {Material{100.0, 10.0, 0.0, 1000.0, 0.7}};
   config.contact_law = "no_such_law";
   EXPECT_THROW(Engine(p, config), InputError);
+  config.contact_law = "linear";
+  config.threads = 100000;  // would crash the OpenMP runtime
+  EXPECT_THROW(Engine(p, config), InputError);
+  config.threads = 1;
   p.radius[3] = -1.0;
   config.contact_law = "linear";
   EXPECT_THROW(Engine(p, config), InputError);

@@ -52,32 +52,36 @@ ContactModels make_contact_model(const std::string& name, const std::vector<Mate
 }
 
 // The bond model of the configured law, its parameters validated, a history per bond.
+template <class Law>
+BondModel<Law> make_bond_model(const BondMaterialList<Law>& list, const Bonds& bonds) {
+  bool any_intact = false;
+  for (int s : bonds.state) any_intact = any_intact || s == 0;
+  if (any_intact && list.empty())
+    fail_input(fmt::format("the packing has bonds but no parameters were given for the '{}' bond law", Law::name));
+  for (std::size_t m = 0; m < list.size(); ++m)
+    validate_parameters(list[m], Law::parameters, fmt::format("{} bond material {} ", Law::name, m));
+  const std::size_t count = list.size();
+  for (std::size_t b = 0; any_intact && b < bonds.size(); ++b) {
+    if (count > 1 && (bonds.material[b] < 0 || static_cast<std::size_t>(bonds.material[b]) >= count))
+      fail_input(fmt::format("bond {} has material {}: parameters were given for materials 0..{}", b,
+                             bonds.material[b], count - 1));
+    if (Law::uses_rest_length && !(bonds.rest_length[b] > 0.0))
+      fail_input(fmt::format("bond {} has rest length {:g}: must be > 0 m for {} bonds", b, bonds.rest_length[b],
+                             Law::name));
+  }
+  BondModel<Law> model;
+  model.materials = list;
+  model.history.resize(bonds.size());
+  return model;
+}
+
 BondModels make_bond_model(const BondMaterials& materials, const Bonds& bonds) {
-  return std::visit(
-      [&](const auto& list) -> BondModels {
-        using Law = typename BondLaws::law_of_params<typename std::decay_t<decltype(list)>::value_type>;
-        bool any_intact = false;
-        for (int s : bonds.state) any_intact = any_intact || s == 0;
-        if (any_intact && list.empty())
-          fail_input(fmt::format("the packing has bonds but no parameters were given for the '{}' bond law",
-                                 Law::name));
-        for (std::size_t m = 0; m < list.size(); ++m)
-          validate_parameters(list[m], Law::parameters, fmt::format("{} bond material {} ", Law::name, m));
-        const std::size_t count = list.size();
-        for (std::size_t b = 0; any_intact && b < bonds.size(); ++b) {
-          if (count > 1 && (bonds.material[b] < 0 || static_cast<std::size_t>(bonds.material[b]) >= count))
-            fail_input(fmt::format("bond {} has material {}: parameters were given for materials 0..{}", b,
-                                   bonds.material[b], count - 1));
-          if (Law::uses_rest_length && !(bonds.rest_length[b] > 0.0))
-            fail_input(fmt::format("bond {} has rest length {:g}: must be > 0 m for {} bonds", b,
-                                   bonds.rest_length[b], Law::name));
-        }
-        BondModel<Law> model;
-        model.materials = list;
-        model.history.resize(bonds.size());
-        return model;
-      },
-      materials);
+  BondModels model;
+  BondLaws::for_each([&](auto law) {
+    using Law = typename decltype(law)::type;
+    if (const auto* list = std::get_if<BondMaterialList<Law>>(&materials)) model = make_bond_model<Law>(*list, bonds);
+  });
+  return model;
 }
 
 }  // namespace
@@ -93,7 +97,8 @@ Engine::Engine(const Packing& packing, const EngineConfig& config) : packing_(pa
           "in (0, 10]");
   require(config_.max_time_step >= 0.0 && std::isfinite(config_.max_time_step), "max_time_step",
           config_.max_time_step, ">= 0 s (0 = automatic)");
-  require(config_.threads >= 0, "threads", config_.threads, ">= 0 (0 = all cores)");
+  // An OpenMP team of 10^5 threads crashes the runtime; no machine this runs on has more than 1024 cores.
+  require(config_.threads >= 0 && config_.threads <= 1024, "threads", config_.threads, "in [0, 1024] (0 = all cores)");
 
   const std::size_t n = packing_.size();
   int type_count = 1;

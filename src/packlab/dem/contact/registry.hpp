@@ -4,7 +4,6 @@
 #pragma once
 
 #include <string>
-#include <tuple>
 #include <string_view>
 #include <type_traits>
 #include <variant>
@@ -31,11 +30,6 @@ struct LawList {
   }
   template <template <class> class Holder>
   using variant = std::variant<Holder<Laws>...>;
-  // The law whose Params type is P.
-  template <class P>
-  using law_of_params = std::tuple_element_t<
-      0, decltype(std::tuple_cat(std::conditional_t<std::is_same_v<P, typename Laws::Params>, std::tuple<Laws>,
-                                                    std::tuple<>>{}...))>;
 };
 
 using ContactLaws = LawList<LinearContact, HertzMindlin, LinearAdhesive>;
