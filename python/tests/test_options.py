@@ -10,6 +10,8 @@ import packlab
 
 # command, Python function, positional arguments of the function
 PORTED = [
+    ("generate lattice", "generate_lattice", ()),
+    ("generate random", "generate_random", ()),
     ("generate vem", "generate_vem", ()),
     ("generate ls", "generate_ls", ()),
     ("generate scrm", "generate_scrm", ()),
@@ -103,3 +105,14 @@ def test_flag_overrides_config_file_which_overrides_default(cli, tmp_path):
     out = cli("generate", "vem", "--check", "--config", config, "--relax-max-steps", "400", "--voids", "60",
               "--out", tmp_path / "o").stdout
     assert "N_S = 100, N_V = 60" in out
+
+
+def test_engine_and_material_take_the_keywords_of_relax():
+    lattice = packlab.generate_lattice()
+    engine = python_keywords("Engine", (lattice,))
+    relax = python_keywords("relax", (lattice,))
+    assert engine == relax - {"steps", "tolerance", "check_interval"}
+    material = python_keywords("Material", ())
+    assert material < engine and {"normal_stiffness", "work_of_adhesion"} <= material
+    m = packlab.Material(normal_stiffness=5.0, adhesion_range=1e-9)
+    assert m.normal_stiffness == 5.0 and m.adhesion_range == 1e-9 and m.damping == 0.7

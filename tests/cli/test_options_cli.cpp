@@ -15,8 +15,8 @@ using packlab::test::run_packlab;
 
 namespace {
 
-const char* const ported[] = {"generate vem", "generate ls", "generate scrm", "generate fba",
-                              "build opal",   "shake",       "bond",          "relax"};
+const char* const ported[] = {"generate lattice", "generate random", "generate vem", "generate ls", "generate scrm",
+                              "generate fba",     "build opal",      "shake",        "bond",        "relax"};
 
 // Flags that steer the run rather than set an option.
 const std::set<std::string> run_control{"--help",     "--config", "--out",   "--resume",

@@ -42,6 +42,8 @@ std::string shake_config_reference();
 std::string fba_config_reference();
 std::string opal_config_reference();
 std::string relax_config_reference();
+std::string lattice_config_reference();
+std::string random_config_reference();
 std::string bond_config_reference();
 std::string shear_config_reference();     // also read by `calibrate shear`
 std::string compress_config_reference();  // also read by `calibrate compress`

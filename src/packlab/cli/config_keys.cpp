@@ -16,10 +16,11 @@ std::string config_reference() {
       "Command-line flags override the file (default < file < flag). Where a command names its Python\n"
       "function, every key is also a flag (`relax.max_steps`: `--relax-max-steps`) and a keyword of\n"
       "that function (`relax_max_steps`), from the same declaration.\n\n";
-  for (const std::string& section : {vem_config_reference(), ls_config_reference(), scrm_config_reference(), shake_config_reference(), fba_config_reference(), opal_config_reference(),
-                                     relax_config_reference(),
-                                     bond_config_reference(),
-                                     shear_config_reference(), compress_config_reference()}) out += section;
+  for (const std::string& section :
+       {lattice_config_reference(), random_config_reference(), vem_config_reference(), ls_config_reference(),
+        scrm_config_reference(), shake_config_reference(), fba_config_reference(), opal_config_reference(),
+        relax_config_reference(), bond_config_reference(), shear_config_reference(), compress_config_reference()})
+    out += section;
   return out;
 }
 

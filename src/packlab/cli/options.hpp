@@ -18,6 +18,7 @@ class OptionFlags {
   // Adds the flags of `schema` to `cmd`; the schema's targets must outlive the parse.
   OptionFlags(CLI::App* cmd, io::ConfigSchema schema) : schema_(std::move(schema)) {
     values_.resize(schema_.fields().size());
+    lists_.resize(schema_.fields().size());
     switches_ = std::make_unique<bool[]>(schema_.fields().size());
     for (std::size_t i = 0; i < schema_.fields().size(); ++i) {
       const io::ConfigSchema::Field& f = schema_.fields()[i];
@@ -32,8 +33,13 @@ class OptionFlags {
         options_.push_back(cmd->add_flag(names, switches_[i], help + " (default " + f.default_text + ")"));
         continue;
       }
+      if (f.type == "numbers") {  // 1,0.5 or 1 0.5
+        options_.push_back(
+            cmd->add_option(names, lists_[i], help)->delimiter(',')->type_name("LIST")->default_str(f.default_text));
+        continue;
+      }
       CLI::Option* o = cmd->add_option(names, values_[i], help);
-      o->type_name(f.type == "number" ? "FLOAT" : f.type == "integer" ? "INT" : f.type == "numbers" ? "LIST" : "TEXT");
+      o->type_name(f.type == "number" ? "FLOAT" : f.type == "integer" ? "INT" : "TEXT");
       o->default_str(f.type == "string" ? f.default_text.substr(1, f.default_text.size() - 2) : f.default_text);
       options_.push_back(o);
     }
@@ -44,10 +50,15 @@ class OptionFlags {
     for (std::size_t i = 0; i < options_.size(); ++i)
       if (options_[i]->count() > 0) {
         const io::ConfigSchema::Field& f = schema_.fields()[i];
-        if (f.type == "boolean")
+        if (f.type == "boolean") {
           io::ConfigSchema::set(f, switches_[i], f.flag());
-        else
+        } else if (f.type == "numbers") {
+          std::string text;
+          for (const std::string& item : lists_[i]) text += (text.empty() ? "" : ",") + item;
+          io::ConfigSchema::set_text(f, text, f.flag());
+        } else {
           io::ConfigSchema::set_text(f, values_[i], f.flag());
+        }
       }
   }
   // The first flag of the set that was given, or "" (e.g. to refuse it with --resume).
@@ -65,8 +76,9 @@ class OptionFlags {
 
  private:
   io::ConfigSchema schema_;
-  std::vector<std::string> values_;   // the text of each option
-  std::unique_ptr<bool[]> switches_;  // the boolean fields' flags
+  std::vector<std::string> values_;              // the text of each option
+  std::vector<std::vector<std::string>> lists_;  // the items of each list option
+  std::unique_ptr<bool[]> switches_;             // the boolean fields' flags
   std::vector<CLI::Option*> options_;
 };
 

@@ -17,35 +17,120 @@ void add_linear_material(ConfigSchema& schema, const std::string& section, dem::
   schema.parameters(section, m, properties);
 }
 
-dem::EngineConfig RelaxRun::config() const {
+namespace {
+
+// Three values per axis (InputError naming `key` otherwise).
+void require_per_axis(const char* key, const std::vector<double>& v) {
+  if (v.size() != 3) fail_input(fmt::format("{}: must be three values (x, y, z), got {}", key, v.size()));
+}
+
+}  // namespace
+
+generate::LatticeParams LatticeOptions::params() const {
+  generate::LatticeParams p = lattice;
+  p.type = generate::lattice_type_from_name(type);
+  require_per_axis("cells", cells);
+  for (int a = 0; a < 3; ++a) {
+    const double c = cells[static_cast<std::size_t>(a)];
+    require(c >= 1.0 && c <= 1e6 && c == std::floor(c), "cells", c, "an integer in [1, 1e6]");
+    p.cells[static_cast<std::size_t>(a)] = static_cast<int>(c);
+  }
+  return p;
+}
+
+ConfigSchema lattice_options(LatticeOptions& o) {
+  ConfigSchema schema("generate lattice", "A cubic lattice in a matching periodic box.", "generate_lattice");
+  schema.text("type", o.type, "Lattice: sc, bcc or fcc")
+      .numbers("cells", o.cells, "Unit cells along x, y, z")
+      .number("radius", o.lattice.radius, "Sphere radius")
+      .unit("m")
+      .range(ranges::positive)
+      .number("gap", o.lattice.gap, "Surface gap between nearest neighbours; 0 = touching")
+      .unit("m")
+      .range(ranges::non_negative);
+  return schema;
+}
+
+generate::RandomPackingParams RandomOptions::params() const {
+  generate::RandomPackingParams p = random;
+  p.allow_overlap = !no_overlap;
+  require_per_axis("periodic", periodic);
+  require_per_axis("aspect", aspect);
+  for (std::size_t a = 0; a < 3; ++a) {
+    require(periodic[a] == 0.0 || periodic[a] == 1.0, "periodic", periodic[a], "1 (periodic) or 0 (open)");
+    p.periodic[a] = periodic[a] != 0.0;
+    p.aspect[a] = aspect[a];
+  }
+  return p;
+}
+
+ConfigSchema random_options(RandomOptions& o) {
+  ConfigSchema schema("generate random", "Uniform random spheres, or random sequential addition without overlaps.",
+                      "generate_random");
+  schema.integer("particles", o.random.particles, "Number of spheres")
+      .range({1.0, ranges::inf, false, true})
+      .number("radius", o.random.radius, "Sphere radius")
+      .unit("m")
+      .range(ranges::positive)
+      .number("phi", o.random.volume_fraction, "Nominal volume fraction (sum of sphere volumes / box)")
+      .range({0.0, 1.0, true, true})
+      .boolean("no_overlap", o.no_overlap, "Random sequential addition: no two spheres overlap (phi < 0.36)")
+      .numbers("periodic", o.periodic, "Periodicity along x, y, z (1 periodic, 0 open; e.g. 1,1,0)")
+      .numbers("aspect", o.aspect, "Box edge ratios x, y, z")
+      .integer("seed", o.seed, "Seed of the random generator");
+  return schema;
+}
+
+dem::EngineConfig EngineSettings::config() const {
   dem::EngineConfig c = engine;
   c.stiffness_rule = dem::stiffness_rule_from_name(stiffness_rule);
+  c.time_step_rule = dem::time_step_rule_from_name(time_step_rule);
   return c;
 }
 
-ConfigSchema relax_options(RelaxRun& r) {
+void add_engine_options(ConfigSchema& schema, EngineSettings& s) {
   std::string laws;
   for (const std::string& name : dem::contact_law_names()) laws += (laws.empty() ? "" : ", ") + name;
-  ConfigSchema schema("relax", "Relaxation of a packing until the forces balance (docs/engine.md).", "relax");
-  schema.text("contact_law", r.engine.contact_law, "Contact law: one of " + laws);
-  schema.parameters("", r.engine.types.front(), dem::material_parameters());
+  schema.text("contact_law", s.engine.contact_law, "Contact law: one of " + laws);
+  schema.parameters("", s.engine.types.front(), dem::material_parameters());
   schema
-      .text("stiffness_rule", r.stiffness_rule,
+      .text("stiffness_rule", s.stiffness_rule,
             "particle: stiffnesses are PFC particle stiffnesses in series (contact = k/2); contact: they are "
             "contact stiffnesses (LAMMPS kn)")
-      .number("time_step", r.engine.time_step, "Time step; 0 = time_step_safety * min sqrt(m/k)")
+      .number("time_step", s.engine.time_step, "Time step; 0 = time_step_safety * min sqrt(m/k)")
       .unit("s")
       .range(ranges::non_negative)
-      .number("time_step_safety", r.engine.time_step_safety, "Safety factor of the automatic time step")
+      .number("time_step_safety", s.engine.time_step_safety, "Safety factor of the automatic time step")
       .range(ranges::positive)
-      .integer("steps", r.relax.max_steps, "Step limit")
+      .text("time_step_rule", s.time_step_rule,
+            "global (from the stiffest contact and lightest particle), contacts or stiffness_sum (refreshed from "
+            "the touching pairs, capped at max_time_step)")
+      .number("max_time_step", s.engine.max_time_step,
+              "Cap of the refreshed time step; 0 = safety * max over particles of sqrt(m_i / k_i)")
+      .unit("s")
+      .range(ranges::non_negative)
+      .number("skin_ratio", s.engine.skin_ratio, "Verlet skin as a fraction of the largest radius")
+      .range(ranges::positive)
+      .integer("threads", s.engine.threads, "OpenMP threads (0 = all cores); results are reproducible per count")
+      .range({0.0, 1024.0, false, false});
+}
+
+ConfigSchema engine_options(EngineSettings& s) {
+  ConfigSchema schema("Engine", "The DEM engine with one material for every particle type.", "Engine");
+  add_engine_options(schema, s);
+  return schema;
+}
+
+ConfigSchema relax_options(RelaxRun& r) {
+  ConfigSchema schema("relax", "Relaxation of a packing until the forces balance (docs/engine.md).", "relax");
+  add_engine_options(schema, r);
+  schema.integer("steps", r.relax.max_steps, "Step limit")
       .range(ranges::non_negative)
       .number("tolerance", r.relax.tolerance,
               "Stop when the mean unbalanced force ratio falls below this; 0 runs exactly `steps` steps")
       .range(ranges::non_negative)
       .integer("check_interval", r.relax.check_interval, "Steps between diagnostics")
       .range({1.0, ranges::inf, false, true})
-      .integer("threads", r.engine.threads, "OpenMP threads (0 = all cores)")
       .integer("seed", r.seed, "Accepted for uniformity; relax draws no random numbers")
       .command_only();
   return schema;

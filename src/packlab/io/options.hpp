@@ -4,6 +4,7 @@
 // command and its Python function take the same options under the same names.
 #pragma once
 
+#include <array>
 #include <nlohmann/json.hpp>
 #include <string>
 
@@ -12,8 +13,10 @@
 #include "packlab/dem/material.hpp"
 #include "packlab/dem/relax.hpp"
 #include "packlab/generate/fba.hpp"
+#include "packlab/generate/lattice.hpp"
 #include "packlab/generate/ls.hpp"
 #include "packlab/generate/opal.hpp"
+#include "packlab/generate/random.hpp"
 #include "packlab/generate/scrm.hpp"
 #include "packlab/generate/shake.hpp"
 #include "packlab/generate/vem.hpp"
@@ -25,17 +28,49 @@ namespace packlab::io {
 // density, damping, friction), as the linear contact law with local damping reads them.
 void add_linear_material(ConfigSchema& schema, const std::string& section, dem::Material& material);
 
-// `packlab relax` / packlab.relax: relaxation of a packing with one material for every type.
-struct RelaxRun {
+// `packlab generate lattice` / packlab.generate_lattice: a cubic lattice in a matching box.
+struct LatticeOptions {
+  std::string type = generate::lattice_type_name(generate::LatticeParams{}.type);
+  std::vector<double> cells = per_axis(generate::LatticeParams{}.cells);
+  generate::LatticeParams lattice;         // radius and gap
+  generate::LatticeParams params() const;  // validated
+  template <class T>
+  static std::vector<double> per_axis(const std::array<T, 3>& a) {
+    return {static_cast<double>(a[0]), static_cast<double>(a[1]), static_cast<double>(a[2])};
+  }
+};
+ConfigSchema lattice_options(LatticeOptions& o);
+
+// `packlab generate random` / packlab.generate_random: random spheres, overlapping or not.
+struct RandomOptions {
+  generate::RandomPackingParams random;  // particles, radius, volume fraction
+  bool no_overlap = !generate::RandomPackingParams{}.allow_overlap;
+  std::vector<double> periodic = LatticeOptions::per_axis(generate::RandomPackingParams{}.periodic);
+  std::vector<double> aspect = LatticeOptions::per_axis(generate::RandomPackingParams{}.aspect);
+  std::uint64_t seed = 1;
+  generate::RandomPackingParams params() const;  // validated
+};
+ConfigSchema random_options(RandomOptions& o);
+
+// The engine's options with one material for every particle type: packlab.Engine and the
+// engine part of `packlab relax`. The material's keys are all of dem::material_parameters();
+// the engine checks those its contact law reads (a law's unused properties may stay outside
+// their range, e.g. youngs_modulus = 0 for the linear law).
+struct EngineSettings {
   dem::EngineConfig engine;  // engine.types[0]: the material
   std::string stiffness_rule = dem::stiffness_rule_name(dem::EngineConfig{}.stiffness_rule);
+  std::string time_step_rule = dem::time_step_rule_name(dem::EngineConfig{}.time_step_rule);
+
+  dem::EngineConfig config() const;  // engine with the two rules
+};
+void add_engine_options(ConfigSchema& schema, EngineSettings& s);
+ConfigSchema engine_options(EngineSettings& s);  // the keywords of packlab.Engine
+
+// `packlab relax` / packlab.relax: the engine's options and the relaxation's.
+struct RelaxRun : EngineSettings {
   dem::RelaxOptions relax;
   std::uint64_t seed = 1;  // accepted for uniformity; relax draws no random numbers
-
-  dem::EngineConfig config() const;  // engine with the stiffness rule
 };
-// The material's keys are all of dem::material_parameters(); the engine checks those its contact
-// law reads (a law's unused properties may stay outside their range, e.g. youngs_modulus = 0).
 ConfigSchema relax_options(RelaxRun& r);
 
 // `packlab generate vem` / packlab.generate_vem: the void expansion method.
