@@ -4,8 +4,6 @@
 
 namespace packlab::python {
 
-void bind_analyze_later(py::module_& m);  // analyze_more.cpp: rdf, pore size, fabric, fits
-
 void bind_analyze(py::module_& m) {
   using analyze::Coordination;
   m.def(
@@ -86,7 +84,6 @@ result before compute raises. Per-particle arrays describe the last packing.
                              "[a][b]: mean contacts with type types[b] per particle of type types[a].")
       .def_property_readonly("contact_eps", &Coordination::contact_eps)
       .def_property_readonly("rattler_threshold", &Coordination::rattler_threshold);
-  bind_analyze_later(m);
 }
 
 }  // namespace packlab::python

@@ -19,7 +19,9 @@
 #include <utility>
 #include <vector>
 
+#include "packlab/core/error.hpp"
 #include "packlab/core/vec3.hpp"
+#include "packlab/io/config.hpp"
 
 namespace py = pybind11;
 
@@ -106,6 +108,47 @@ inline std::vector<Vec3> vec3s_from_numpy(const py::handle& values, const char* 
 inline Vec3 to_vec3(const std::array<double, 3>& a) { return {a[0], a[1], a[2]}; }
 inline std::array<double, 3> from_vec3(const Vec3& v) { return {v.x, v.y, v.z}; }
 
+// A types.SimpleNamespace of the entries of `values` (what the generators and analyses return).
+inline py::object namespace_of(py::dict values) {
+  return py::module_::import("types").attr("SimpleNamespace")(**values);
+}
+
+// Applies keyword arguments to the targets of an option set (io/config.hpp): each keyword is a
+// key with `_` for `.` (relax_max_steps for relax.max_steps) or an alias; the value goes through
+// the same checks as a config-file value. An unknown keyword or a value of the wrong type raises
+// packlab.InputError naming `function` and the keyword. Defaults stay those of the struct.
+// Returns the schema (e.g. for validate()).
+inline io::ConfigSchema apply_keywords(io::ConfigSchema schema, const py::kwargs& kwargs, const std::string& function) {
+  for (const auto& [name_handle, value_handle] : kwargs) {
+    const std::string name = py::str(name_handle);
+    const auto value = py::reinterpret_borrow<py::object>(value_handle);
+    const io::ConfigSchema::Field* field = schema.find(name);
+    if (field == nullptr || !field->python || name.find('.') != std::string::npos || name.rfind("--", 0) == 0) {
+      std::string known;
+      for (const std::string& k : schema.keywords()) known += (known.empty() ? "" : ", ") + k;
+      fail_input(function + ": unknown keyword '" + name + "' (known: " + known + ")");
+    }
+    io::ConfigSchema::Value v;
+    if (field->type == "numbers" && !py::isinstance<py::str>(value))
+      v = from_numpy<double>(value, name.c_str());
+    else if (py::isinstance<py::bool_>(value) || py::isinstance(value, py::module_::import("numpy").attr("bool_")))
+      v = value.cast<bool>();
+    else if (py::isinstance<py::str>(value))
+      v = value.cast<std::string>();
+    else if (py::hasattr(value, "__index__"))
+      v = py::int_(value).cast<std::int64_t>();
+    else if (py::hasattr(value, "__float__"))
+      v = value.cast<double>();
+    else
+      fail_input(function + ": " + name + " = " + std::string(py::repr(value)) + ": must be a " + field->type);
+    io::ConfigSchema::set(*field, v, name);
+  }
+  return schema;
+}
+
+// The keyword list of a docstring: one line per option of the set.
+inline std::string keywords_doc(const io::ConfigSchema& schema) { return "Keywords:\n" + schema.python_doc(); }
+
 // The optional progress callback of long runs. The run itself holds no GIL; every call of
 // tick() (from the thread that released it) re-acquires the GIL, checks for Ctrl-C and calls
 // the callback at most every `interval` seconds (always when `force`). A Python exception in
@@ -139,14 +182,23 @@ class ProgressCallback {
   std::chrono::steady_clock::time_point last_{}, last_signal_check_{};
 };
 
-// One function per concern (packing.cpp, io.cpp, generate.cpp, analyze.cpp, dem.cpp).
+// One function per concern, in the file of the same name (python/src mirrors src/packlab).
 void bind_packing(py::module_& m);
 void bind_io(py::module_& m);
-void bind_generate(py::module_& m);
-void bind_analyze(py::module_& m);
+void bind_generate(py::module_& m);         // generate.cpp: lattice, random, bond
+void bind_generate_vem(py::module_& m);     // generate_vem.cpp
+void bind_generate_ls(py::module_& m);      // generate_ls.cpp
+void bind_generate_shake(py::module_& m);   // generate_shake.cpp
+void bind_generate_scrm(py::module_& m);    // generate_scrm.cpp
+void bind_analyze(py::module_& m);          // analyze.cpp: coordination, porosity, density
+void bind_analyze_rdf(py::module_& m);      // analyze_rdf.cpp
+void bind_analyze_pore_size(py::module_& m);  // analyze_pore_size.cpp
+void bind_analyze_fabric(py::module_& m);   // analyze_fabric.cpp
+void bind_analyze_fits(py::module_& m);     // analyze_fits.cpp: inflection, power law, porosity laws
 void bind_dem(py::module_& m);
-void bind_shear(py::module_& m);     // shear.cpp (issue #6)
-void bind_opal(py::module_& m);      // opal.cpp: fba, opal builder (issue #7)
-void bind_compress(py::module_& m);  // compress.cpp: compression test, calibration (issue #7)
+void bind_shear(py::module_& m);     // shear.cpp: oscillatory shear, its calibration
+void bind_generate_fba(py::module_& m);     // generate_fba.cpp
+void bind_generate_opal(py::module_& m);    // generate_opal.cpp: inverse-opal builder
+void bind_compress(py::module_& m);  // compress.cpp: uniaxial compression, its calibration
 
 }  // namespace packlab::python

@@ -3,12 +3,14 @@
 // optional progress callback is called (throttled) with the GIL held.
 #include <fmt/format.h>
 
+#include <deque>
 #include <sstream>
 
 #include "common.hpp"
 #include "packlab/core/error.hpp"
 #include "packlab/dem/engine.hpp"
 #include "packlab/dem/relax.hpp"
+#include "packlab/io/options.hpp"
 
 namespace packlab::python {
 
@@ -78,81 +80,44 @@ dem::RelaxResult relax_engine(Engine& engine, long steps, double tolerance, long
   return result;
 }
 
-EngineConfig make_config(const std::string& contact_law, double normal_stiffness, double shear_stiffness,
-                         double friction, double density, double damping, double youngs_modulus, double poisson_ratio,
-                         double restitution, double rolling_friction, std::optional<std::vector<Material>> materials,
-                         const std::string& stiffness_rule, double time_step, double time_step_safety,
-                         const std::string& time_step_rule, double max_time_step, double skin_ratio,
-                         const std::string& bond_law,
-                         std::optional<std::vector<dem::ContactBond::Params>> bond_materials, int threads) {
-  EngineConfig c;
-  c.contact_law = contact_law;
-  if (materials) {
-    c.types = *materials;
-  } else {
-    Material t;
-    t.normal_stiffness = normal_stiffness;
-    t.shear_stiffness = shear_stiffness;
-    t.friction = friction;
-    t.density = density;
-    t.damping = damping;
-    t.youngs_modulus = youngs_modulus;
-    t.poisson_ratio = poisson_ratio;
-    t.restitution = restitution;
-    t.rolling_friction = rolling_friction;
-    c.types = {t};
-  }
-  c.stiffness_rule = dem::stiffness_rule_from_name(stiffness_rule);
-  c.time_step = time_step;
-  c.time_step_safety = time_step_safety;
-  c.time_step_rule = dem::time_step_rule_from_name(time_step_rule);
-  c.max_time_step = max_time_step;
-  c.skin_ratio = skin_ratio;
+// The bonds of an engine: `bond_law` must be the contact bond (BondMaterial parameters).
+void set_bond_materials(EngineConfig& c, const std::string& bond_law,
+                        const std::optional<std::vector<dem::ContactBond::Params>>& bond_materials) {
   if (bond_law != dem::ContactBond::name)
-    packlab::fail_input(fmt::format("bond_law = {}: Engine takes '{}' bonds (BondMaterial)", bond_law, dem::ContactBond::name));
+    packlab::fail_input(
+        fmt::format("bond_law = {}: Engine takes '{}' bonds (BondMaterial)", bond_law, dem::ContactBond::name));
   if (bond_materials) c.bond_materials = *bond_materials;
-  c.threads = threads;
-  return c;
 }
 
-const char* engine_kwargs_doc = R"doc(
-Material (one for every particle type; `materials` gives one Material per type instead):
-  normal_stiffness [N/m], shear_stiffness [N/m], friction [-] (Coulomb), density [kg/m^3]
-  (used where the packing has no per-particle density), damping [-] (local damping alpha in
-  [0, 1)), youngs_modulus [Pa], poisson_ratio [-], restitution [-], rolling_friction [-]
-  (Hertz-Mindlin only).
-contact_law: "linear" or "hertz_mindlin" (contact_law_names()).
-stiffness_rule: "particle" (PFC particle stiffnesses in series, contact = k/2) or "contact".
-time_step [s]: 0 = time_step_safety * min sqrt(m/k); time_step_rule: "global", "contacts" or "stiffness_sum"
-  (refreshed from touching pairs, capped at max_time_step [s]).
-skin_ratio: Verlet skin / largest radius. bond_law: "contact"; bond_materials: list of
-  BondMaterial (one per bond material), required when the packing has intact bonds.
-threads: OpenMP threads (0 = all cores); results are reproducible for a fixed count.
-)doc";
+// The keywords of Material(...): every property of dem::material_parameters().
+io::ConfigSchema material_keywords(Material& t) {
+  io::ConfigSchema schema("Material", "", "Material");
+  schema.parameters("", t, dem::material_parameters());
+  return schema;
+}
 
 }  // namespace
 
 void bind_dem(py::module_& m) {
-  py::class_<Material>(m, "Material", "Contact parameters of one particle type (see Engine).")
-      .def(py::init([](double normal_stiffness, double shear_stiffness, double friction, double density,
-                       double damping, double youngs_modulus, double poisson_ratio, double restitution,
-                       double rolling_friction) {
-             return Material{normal_stiffness, shear_stiffness, friction,      density,         damping,
-                               youngs_modulus,   poisson_ratio,   restitution, rolling_friction};
-           }),
-           py::kw_only(), py::arg("normal_stiffness") = 1e2, py::arg("shear_stiffness") = 1e1,
-           py::arg("friction") = 0.0, py::arg("density") = 1e3, py::arg("damping") = 0.7,
-           py::arg("youngs_modulus") = 0.0, py::arg("poisson_ratio") = 0.25, py::arg("restitution") = 1.0,
-           py::arg("rolling_friction") = 0.0)
-      .def_readwrite("normal_stiffness", &Material::normal_stiffness, "k_n [N/m]")
-      .def_readwrite("shear_stiffness", &Material::shear_stiffness, "k_s [N/m]")
-      .def_readwrite("friction", &Material::friction, "Coulomb coefficient mu [-]")
-      .def_readwrite("density", &Material::density, "[kg/m^3]")
-      .def_readwrite("damping", &Material::damping, "local damping alpha [-]")
-      .def_readwrite("youngs_modulus", &Material::youngs_modulus, "E [Pa] (Hertz-Mindlin)")
-      .def_readwrite("poisson_ratio", &Material::poisson_ratio, "nu [-] (Hertz-Mindlin)")
-      .def_readwrite("restitution", &Material::restitution, "e [-] (Hertz-Mindlin)")
-      .def_readwrite("rolling_friction", &Material::rolling_friction, "mu_r [-] (Hertz-Mindlin)")
+  Material material_defaults;
+  static const std::string material_doc =
+      "Material(**keywords): the properties of one particle type that the contact laws read (see Engine). " +
+      keywords_doc(material_keywords(material_defaults));
+  py::class_<Material> material(m, "Material", material_doc.c_str());
+  material.def(py::init([](const py::kwargs& kwargs) {
+    Material t;
+    apply_keywords(material_keywords(t), kwargs, "Material");
+    return t;
+  }));
+  static std::deque<std::string> property_docs;  // pybind11 keeps the pointers
+  for (const Parameter<Material>& p : dem::material_parameters()) {
+    property_docs.push_back(std::string(p.doc) + (p.unit.empty() ? "" : " [" + std::string(p.unit) + "]"));
+    property_docs.push_back(std::string(p.name));
+    material.def_property(
+        property_docs.back().c_str(), [p](const Material& t) { return p.get(t); },
+        [p](Material& t, double v) { p.set(t, v); }, property_docs[property_docs.size() - 2].c_str());
+  }
+  material
       .def("__repr__", [](const Material& t) {
         return fmt::format("Material(normal_stiffness={:g}, shear_stiffness={:g}, friction={:g}, density={:g}, "
                            "damping={:g})",
@@ -191,33 +156,28 @@ void bind_dem(py::module_& m) {
 
   m.def("contact_law_names", &dem::contact_law_names, "Names of the registered contact laws.");
 
-  py::class_<Engine>(m, "Engine", (std::string(R"doc(
+  io::EngineSettings engine_defaults;
+  static const std::string engine_doc = R"doc(
 The DEM engine: soft spheres, leap-frog integration, Verlet neighbour list, contact laws,
 local damping, bonds, walls. Engine(packing, **keywords) copies the packing; `packing()`
-returns its current state. Keywords:
-)doc") + engine_kwargs_doc)
-                                      .c_str())
-      .def(py::init([](const Packing& packing, const std::string& contact_law, double normal_stiffness,
-                       double shear_stiffness, double friction, double density, double damping, double youngs_modulus,
-                       double poisson_ratio, double restitution, double rolling_friction,
-                       std::optional<std::vector<Material>> materials, const std::string& stiffness_rule,
-                       double time_step, double time_step_safety, const std::string& time_step_rule,
-                       double max_time_step, double skin_ratio, const std::string& bond_law,
-                       std::optional<std::vector<dem::ContactBond::Params>> bond_materials, int threads) {
-             const EngineConfig c = make_config(contact_law, normal_stiffness, shear_stiffness, friction, density,
-                                                damping, youngs_modulus, poisson_ratio, restitution, rolling_friction,
-                                                materials, stiffness_rule, time_step, time_step_safety, time_step_rule,
-                                                max_time_step, skin_ratio, bond_law, bond_materials, threads);
+returns its current state. The material keywords apply to every particle type; `materials`
+(one Material per type) replaces them. bond_law: "contact"; bond_materials: list of
+BondMaterial (one per bond material), required when the packing has intact bonds.
+)doc" + keywords_doc(io::engine_options(engine_defaults));
+  py::class_<Engine>(m, "Engine", engine_doc.c_str())
+      .def(py::init([](const Packing& packing, std::optional<std::vector<Material>> materials,
+                       const std::string& bond_law,
+                       std::optional<std::vector<dem::ContactBond::Params>> bond_materials, const py::kwargs& kwargs) {
+             io::EngineSettings settings;
+             apply_keywords(io::engine_options(settings), kwargs, "Engine");
+             EngineConfig c = settings.config();
+             if (materials) c.types = *materials;
+             set_bond_materials(c, bond_law, bond_materials);
              py::gil_scoped_release nogil;
              return std::make_unique<Engine>(packing, c);
            }),
-           py::arg("packing"), py::kw_only(), py::arg("contact_law") = "linear", py::arg("normal_stiffness") = 1e2,
-           py::arg("shear_stiffness") = 1e1, py::arg("friction") = 0.0, py::arg("density") = 1e3,
-           py::arg("damping") = 0.7, py::arg("youngs_modulus") = 0.0, py::arg("poisson_ratio") = 0.25,
-           py::arg("restitution") = 1.0, py::arg("rolling_friction") = 0.0, py::arg("materials") = py::none(),
-           py::arg("stiffness_rule") = "particle", py::arg("time_step") = 0.0, py::arg("time_step_safety") = 0.2,
-           py::arg("time_step_rule") = "global", py::arg("max_time_step") = 0.0, py::arg("skin_ratio") = 0.2,
-           py::arg("bond_law") = "contact", py::arg("bond_materials") = py::none(), py::arg("threads") = 0)
+           py::arg("packing"), py::kw_only(), py::arg("materials") = py::none(),
+           py::arg("bond_law") = std::string(dem::ContactBond::name), py::arg("bond_materials") = py::none())
       .def("run", &Engine::run, py::arg("steps"), py::call_guard<py::gil_scoped_release>(),
            "Advances `steps` steps (GIL released).")
       .def("step", &Engine::step_measured, py::call_guard<py::gil_scoped_release>(),
@@ -335,16 +295,27 @@ force (M x 3, force on j [N]).)doc")
           "Diagnostics of every check as a dict of arrays (the columns of `packlab relax --log`).")
       .def("__repr__", [](const RelaxOutcome& r) { return fmt::format("<RelaxResult: {}>", r.reason); });
 
+  io::RelaxRun relax_defaults;
+  static const std::string relax_doc = R"doc(
+`packlab relax` from Python: relaxes a copy of the packing with the contact law and local
+damping until the mean unbalanced force ratio falls below `tolerance` (0 = run exactly `steps`
+steps) or `steps` steps ran; returns a RelaxResult (packing, steps, converged, reason,
+time_step, last, history). `materials` (one Material per particle type) replaces the material
+keywords. The GIL is released while it runs; progress(step, total_steps, diagnostics) is called
+with the GIL held at most every progress_interval seconds and once at the end; an exception in
+it (or Ctrl-C) stops the run.
+)doc" + keywords_doc(io::relax_options(relax_defaults));
   m.def(
       "relax",
-      [](const Packing& packing, double normal_stiffness, double shear_stiffness, double friction, double damping,
-         double density, const std::string& stiffness_rule, double time_step, double time_step_safety, long steps,
-         double tolerance, long check_interval, int threads, const std::string& contact_law,
-         std::optional<std::vector<Material>> materials, py::object progress, double progress_interval) {
-        const EngineConfig c =
-            make_config(contact_law, normal_stiffness, shear_stiffness, friction, density, damping, 0.0, 0.25, 1.0,
-                        0.0, materials, stiffness_rule, time_step, time_step_safety, "global", 0.0, 0.2, "contact",
-                        std::nullopt, threads);
+      [](const Packing& packing, std::optional<std::vector<Material>> materials, py::object progress,
+         double progress_interval, const py::kwargs& kwargs) {
+        io::RelaxRun run;
+        apply_keywords(io::relax_options(run), kwargs, "relax");
+        EngineConfig c = run.config();
+        if (materials) c.types = *materials;
+        const long steps = run.relax.max_steps;
+        const double tolerance = run.relax.tolerance;
+        const long check_interval = run.relax.check_interval;
         std::unique_ptr<Engine> engine;
         {
           py::gil_scoped_release nogil;
@@ -361,21 +332,8 @@ force (M x 3, force on j [N]).)doc")
         out.history = r.history;
         return out;
       },
-      py::arg("packing"), py::kw_only(), py::arg("normal_stiffness") = 1e2, py::arg("shear_stiffness") = 1e1,
-      py::arg("friction") = 0.0, py::arg("damping") = 0.7, py::arg("density") = 1e3,
-      py::arg("stiffness_rule") = "particle", py::arg("time_step") = 0.0, py::arg("time_step_safety") = 0.2,
-      py::arg("steps") = 100000, py::arg("tolerance") = 1e-3, py::arg("check_interval") = 100,
-      py::arg("threads") = 0, py::arg("contact_law") = "linear", py::arg("materials") = py::none(),
-      py::arg("progress") = py::none(), py::arg("progress_interval") = 0.5, R"doc(
-`packlab relax` from Python: relaxes a copy of the packing with the linear contact law and
-local damping until the mean unbalanced force ratio falls below `tolerance` (0 = run exactly
-`steps` steps) or `steps` steps ran; returns a RelaxResult (packing, steps, converged, reason,
-time_step, last, history). Keywords as the command-line options: normal_stiffness,
-shear_stiffness [N/m], friction, damping, density [kg/m^3], stiffness_rule, time_step [s],
-time_step_safety, steps, tolerance, check_interval, threads. The GIL is released while it runs;
-progress(step, total_steps, diagnostics) is called with the GIL held at most every
-progress_interval seconds and once at the end; an exception in it (or Ctrl-C) stops the run.
-)doc");
+      py::arg("packing"), py::kw_only(), py::arg("materials") = py::none(), py::arg("progress") = py::none(),
+      py::arg("progress_interval") = 0.5, relax_doc.c_str());
 }
 
 }  // namespace packlab::python

@@ -1,6 +1,5 @@
 // packlab._core: the compiled part of the Python package `packlab` (pybind11, NumPy).
-// One file per concern: packing.cpp (Packing, Box, Bonds), io.cpp (read/write), generate.cpp
-// (generators), analyze.cpp (analyses), dem.cpp (engine, relax). Bad input raises
+// One file per concern, named after the part of src/packlab it binds (common.hpp lists them). Bad input raises
 // packlab.InputError (a ValueError) with the message the command line prints.
 #include "common.hpp"
 #include "packlab/core/error.hpp"
@@ -16,9 +15,18 @@ PYBIND11_MODULE(_core, m) {
   packlab::python::bind_packing(m);
   packlab::python::bind_io(m);
   packlab::python::bind_generate(m);
+  packlab::python::bind_generate_vem(m);
+  packlab::python::bind_generate_ls(m);
+  packlab::python::bind_generate_shake(m);
+  packlab::python::bind_generate_scrm(m);
   packlab::python::bind_analyze(m);
+  packlab::python::bind_analyze_rdf(m);
+  packlab::python::bind_analyze_pore_size(m);
+  packlab::python::bind_analyze_fabric(m);
+  packlab::python::bind_analyze_fits(m);
   packlab::python::bind_dem(m);
   packlab::python::bind_shear(m);
-  packlab::python::bind_opal(m);
+  packlab::python::bind_generate_fba(m);
+  packlab::python::bind_generate_opal(m);
   packlab::python::bind_compress(m);
 }

@@ -22,8 +22,11 @@ struct Settings {
 
 io::ConfigSchema schema(Settings& s) {
   io::ConfigSchema c("demo", "A schema for tests.");
-  c.number("material.stiffness", s.stiffness, "k [N/m]")
+  c.number("material.stiffness", s.stiffness, "k")
+      .unit("N/m")
+      .range(ranges::positive)
       .integer("relax.steps", s.steps, "steps")
+      .alias("steps")
       .integer("threads", s.threads, "threads")
       .integer("seed", s.seed, "seed")
       .boolean("plots", s.plots, "plots")
@@ -91,8 +94,73 @@ TEST(ConfigSchema, MarkdownListsEveryKeyWithItsDefault) {
   Settings s;
   const std::string md = schema(s).markdown();
   EXPECT_NE(md.find("## `packlab demo`"), std::string::npos);
-  EXPECT_NE(md.find("| `material.stiffness` | number | `100` | k [N/m] |"), std::string::npos) << md;
-  EXPECT_NE(md.find("| `law` | string | `\"linear\"` | contact / law |"), std::string::npos) << md;
+  EXPECT_NE(md.find("| `material.stiffness` | number | `100` | N/m | > 0 | k |"), std::string::npos) << md;
+  EXPECT_NE(md.find("| `law` | string | `\"linear\"` |  |  | contact / law |"), std::string::npos) << md;
+}
+
+TEST(ConfigSchema, NamesFlagsKeywordsAndReportEntriesAfterTheKey) {
+  Settings s;
+  const auto c = schema(s);
+  const auto* f = c.find("relax.steps");
+  ASSERT_NE(f, nullptr);
+  EXPECT_EQ(f->flag(), "--relax-steps");
+  EXPECT_EQ(f->keyword(), "relax_steps");
+  EXPECT_EQ(c.find("--relax-steps"), f);
+  EXPECT_EQ(c.find("relax_steps"), f);
+  EXPECT_EQ(c.find("steps"), f);  // the alias
+  EXPECT_EQ(c.find("--steps"), f);
+  EXPECT_EQ(c.find("relax_stepz"), nullptr);
+  const nlohmann::json j = c.json();
+  EXPECT_EQ(j["material"]["stiffness_N_per_m"], 100.0);
+  EXPECT_EQ(j["relax"]["steps"], 10);
+  EXPECT_EQ(j["law"], "linear");
+  EXPECT_FALSE(j.contains("damping"));  // number_to_all: its targets report themselves
+  EXPECT_EQ(io::unit_suffix("kg/m^3"), "kg_per_m3");
+}
+
+TEST(ConfigSchema, TextAndValuesGoThroughOneTypeCheck) {
+  Settings s;
+  const auto c = schema(s);
+  io::ConfigSchema::set_text(*c.find("relax.steps"), "42", "--relax-steps");
+  io::ConfigSchema::set_text(*c.find("material.stiffness"), "2.5e2", "--material-stiffness");
+  io::ConfigSchema::set_text(*c.find("plots"), "false", "--plots");
+  io::ConfigSchema::set(*c.find("damping"), std::int64_t{0}, "damping");
+  EXPECT_EQ(s.steps, 42);
+  EXPECT_EQ(s.stiffness, 250.0);
+  EXPECT_FALSE(s.plots);
+  EXPECT_EQ(s.damping_a, 0.0);
+  EXPECT_EQ(s.damping_b, 0.0);
+  const auto message = [&](const char* key, const std::string& text) {
+    try {
+      io::ConfigSchema::set_text(*c.find(key), text, key);
+    } catch (const InputError& e) {
+      return std::string(e.what());
+    }
+    return std::string();
+  };
+  EXPECT_NE(message("relax.steps", "1.5").find("must be an integer"), std::string::npos);
+  EXPECT_NE(message("threads", "99999999999").find("out of range"), std::string::npos);
+  EXPECT_NE(message("plots", "maybe").find("true or false"), std::string::npos);
+  EXPECT_NE(message("material.stiffness", "stiff").find("must be a number"), std::string::npos);
+  try {
+    io::ConfigSchema::set(*c.find("law"), 3.0, "law");
+    ADD_FAILURE() << "a number for a string";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("string"), std::string::npos);
+  }
+}
+
+TEST(ConfigSchema, ValidateChecksTheDeclaredRanges) {
+  Settings s;
+  const auto c = schema(s);
+  c.validate();
+  s.stiffness = -1.0;
+  try {
+    c.validate();
+    ADD_FAILURE() << "a negative stiffness passed";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("material.stiffness = -1: must be > 0 N/m"), std::string::npos) << e.what();
+  }
 }
 
 TEST(ConfigSchema, CheckedInReferenceMatchesTheBinary) {

@@ -1,4 +1,5 @@
-// packlab bond IN --model contact|elastic [--eps 0.01] [--cutoff-ratio 1.75] --out FILE.vtu
+// packlab bond IN [--config FILE.toml] --model contact|elastic [--eps 0.01] [--cutoff-ratio 1.75] [--threads T]
+//   --out FILE.vtu
 // Turns a packing into a bonded model: a bond between every pair closer than the model's
 // cutoff, across periodic boundaries (generate/bonding.hpp). The bonds are stored in the file
 // (VTU: bonds as line cells with material, state, rest length and periodic image), so every
@@ -8,19 +9,24 @@
 #include <memory>
 
 #include "packlab/cli/commands.hpp"
+#include "packlab/cli/options.hpp"
 #include "packlab/core/error.hpp"
 #include "packlab/generate/bonding.hpp"
+#include "packlab/io/options.hpp"
 #include "packlab/io/packing_io.hpp"
 
 namespace packlab::cli {
 
+std::string bond_config_reference() {
+  io::BondOptions o;
+  return io::bond_options(o).markdown();
+}
+
 void add_bond(CLI::App& app) {
   struct Options {
-    std::string in, out;
-    std::string model = "contact";
-    double eps = 0.01;
-    double cutoff_ratio = 1.75;
-    int threads = 1;
+    std::string in, out, config;
+    io::BondOptions o;
+    std::unique_ptr<OptionFlags> flags;
     bool quiet = false;
   };
   auto opt = std::make_shared<Options>();
@@ -28,27 +34,22 @@ void add_bond(CLI::App& app) {
       "bond", "Bond every pair closer than a cutoff (contact bonds of touching pairs, or elastic bonds within 1.75 d)");
   cmd->add_option("in", opt->in, "Input packing (any readable format)")->required();
   cmd->add_option("--out", opt->out, "Output bonded model (.vtu: the format that stores bonds)")->required();
-  cmd->add_option("--model", opt->model,
-                  "contact: pairs with d < (1 + eps)(r_i + r_j) (PFC contact bonds, doh-elastic-properties "
-                  "§2.1); elastic: pairs with d < cutoff-ratio (r_i + r_j) (elastic beam bonds, bpm-inverse-opals "
-                  "§2.1)")
-      ->capture_default_str();
-  cmd->add_option("--eps", opt->eps, "Contact tolerance of the contact model, in [0, 1)")->capture_default_str();
-  cmd->add_option("--cutoff-ratio", opt->cutoff_ratio,
-                  "Elastic model: bond pairs closer than this times r_i + r_j (1.75 d for equal spheres), in [1, 2)")
-      ->capture_default_str();
-  cmd->add_option("--threads", opt->threads, "Threads of the pair search")->capture_default_str();
+  cmd->add_option("--config", opt->config, "TOML file with any of the options; flags override it");
+  opt->flags = std::make_unique<OptionFlags>(cmd, io::bond_options(opt->o));
   cmd->add_flag("--quiet", opt->quiet, "No output");
   cmd->callback([opt] {
+    if (!opt->config.empty()) opt->flags->schema().read_file(opt->config);
+    opt->flags->apply();
+    opt->flags->schema().validate();
     if (io::format_from_path(opt->out) != io::Format::vtu)
       fail_input("--out = " + opt->out + ": must end in .vtu (the format that stores bonds)");
     Packing packing = io::read_packing(opt->in);
     generate::BondingOptions options;
-    options.cutoff_ratio = generate::bonding_cutoff_ratio(opt->model, opt->eps, opt->cutoff_ratio);
-    options.threads = opt->threads;
+    options.cutoff_ratio = generate::bonding_cutoff_ratio(opt->o.model, opt->o.eps, opt->o.cutoff_ratio);
+    options.threads = opt->o.threads;
     generate::add_bonds(packing, options);
     io::WriteOptions w;
-    w.comment = fmt::format("packlab bond {} --model {} cutoff_ratio={:g}", opt->in, opt->model, options.cutoff_ratio);
+    w.comment = fmt::format("packlab bond {} --model {} cutoff_ratio={:g}", opt->in, opt->o.model, options.cutoff_ratio);
     io::write_packing(packing, opt->out, w);
     if (!opt->quiet) {
       const double per_particle =

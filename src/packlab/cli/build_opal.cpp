@@ -1,4 +1,4 @@
-// packlab build opal IN --pores fcc|random (--pore-diameter D | --pore-ratio Q) [--orientation 111|100]
+// packlab build opal IN [--config FILE.toml] --pores fcc|random (--pore-diameter D | --pore-ratio Q) [--orientation 111|100]
 //   [--pore-spacing 1] [--pore-origin X,Y,Z] [--pore-count N | --pore-fraction F] [--coating T]
 //   [--opening-distance-ratio 1] [--substrate-layers 2] [--bond-cutoff 1.75] [--bond-radius-ratio 1]
 //   [--silica-density 1297] [--titania-density 3660] [--seed S] [--threads T] --out DIR
@@ -17,26 +17,26 @@
 #include <sstream>
 
 #include "packlab/cli/commands.hpp"
+#include "packlab/cli/options.hpp"
 #include "packlab/core/error.hpp"
 #include "packlab/generate/opal.hpp"
 #include "packlab/io/atomic_file.hpp"
+#include "packlab/io/options.hpp"
 #include "packlab/io/packing_io.hpp"
 #include "packlab/io/report.hpp"
 
 namespace packlab::cli {
 
+std::string opal_config_reference() {
+  io::OpalBuildOptions o;
+  return io::opal_build_options(o).markdown();
+}
+
 void add_build_opal(CLI::App& build) {
   struct Options {
-    std::string in, out;
-    std::string pores = "fcc";
-    double pore_diameter = 0.0, pore_ratio = 0.0;
-    std::string orientation = "111";
-    double pore_spacing = 1.0;
-    std::vector<double> pore_origin;
-    long pore_count = 0;
-    double pore_fraction = 0.0;
-    generate::OpalOptions opal;
-    std::uint64_t seed = 1;
+    std::string in, out, config;
+    io::OpalBuildOptions o;
+    std::unique_ptr<OptionFlags> flags;
     bool quiet = false;
   };
   auto opt = std::make_shared<Options>();
@@ -44,98 +44,22 @@ void add_build_opal(CLI::App& build) {
       "opal", "Inverse-opal bonded-particle model: pores (FCC or random), coating, fixed substrate, bonds "
               "(bpm-inverse-opals §2.1)");
   cmd->add_option("in", opt->in, "Input particle packing (any readable format; e.g. from generate fba)")->required();
-  cmd->add_option("--pores", opt->pores, "Pore arrangement: fcc (lattice) or random (force-biased pore packing)")
-      ->check(CLI::IsMember({"fcc", "random"}))
-      ->capture_default_str();
-  cmd->add_option("--pore-diameter", opt->pore_diameter, "Pore diameter D [m]");
-  cmd->add_option("--pore-ratio", opt->pore_ratio, "Pore diameter / mean particle diameter (instead of D)");
-  cmd->add_option("--orientation", opt->orientation, "FCC direction along z: 111 or 100")->capture_default_str();
-  cmd->add_option("--pore-spacing", opt->pore_spacing,
-                  "FCC nearest-neighbour pore distance / D, in [0.5, 2] (1 = touching, < 1 = wider openings)")
-      ->capture_default_str();
-  cmd->add_option("--pore-origin", opt->pore_origin,
-                  "A pore lattice point X,Y,Z [m] (default: box corner in x, y; lowest layer just above the "
-                  "substrate)")
-      ->delimiter(',')
-      ->expected(3);
-  cmd->add_option("--pore-count", opt->pore_count, "Random pores: number of pores");
-  cmd->add_option("--pore-fraction", opt->pore_fraction,
-                  "Random pores: pore volume fraction of the region above the substrate, in (0, 0.6)");
-  cmd->add_option("--coating", opt->opal.coating_thickness, "Titania coating thickness L_coat [m] (0 = none)")
-      ->capture_default_str();
-  cmd->add_option("--opening-distance-ratio", opt->opal.opening_distance_ratio,
-                  "Coating candidates farther than this x (L_coat + r) from the silica surface stay open")
-      ->capture_default_str();
-  cmd->add_option("--substrate-layers", opt->opal.substrate_layers,
-                  "Fixed substrate: particles with z below the bottom + this x mean diameter")
-      ->capture_default_str();
-  cmd->add_option("--bond-cutoff", opt->opal.bond_cutoff_ratio,
-                  "Bond pairs closer than this x (r_i + r_j) (1.75 d for equal particles), in [1, 2)")
-      ->capture_default_str();
-  cmd->add_option("--bond-radius-ratio", opt->opal.bond_radius_ratio,
-                  "Bond radius / smaller particle radius (recorded for the bond law)")
-      ->capture_default_str();
-  cmd->add_option("--silica-density", opt->opal.silica_density, "Silica continuum density for the report [kg/m^3]")
-      ->capture_default_str();
-  cmd->add_option("--titania-density", opt->opal.titania_density,
-                  "Titania continuum density for the report [kg/m^3]")
-      ->capture_default_str();
-  cmd->add_option("--seed", opt->seed, "Random seed (random pores)")->capture_default_str();
-  cmd->add_option("--threads", opt->opal.threads, "Threads of the bond search")->capture_default_str();
+  cmd->add_option("--config", opt->config, "TOML file with any of the options; flags override it");
+  opt->flags = std::make_unique<OptionFlags>(cmd, io::opal_build_options(opt->o));
   cmd->add_option("--out", opt->out, "Output folder")->required();
   cmd->add_flag("--quiet", opt->quiet, "No output");
   cmd->callback([opt] {
     const auto t0 = std::chrono::steady_clock::now();
+    if (!opt->config.empty()) opt->flags->schema().read_file(opt->config);
+    opt->flags->apply();
     const Packing in = io::read_packing(opt->in);
-    require(in.size() >= 1, "particles", 0, ">= 1 in the input packing");
-    if ((opt->pore_diameter > 0.0) == (opt->pore_ratio > 0.0))
-      fail_input("--pore-diameter and --pore-ratio: give exactly one of them (> 0)");
-    double mean_d = 0;
+    nlohmann::json pore_params;
+    const generate::OpalOptions o = opt->o.resolve(in, &pore_params);
+    opt->flags->schema().validate();
+    const double D = pore_params["diameter_m"].get<double>();
+    double mean_d = 0;  // the profile's slab thickness
     for (double r : in.radius) mean_d += 2.0 * r;
     mean_d /= static_cast<double>(in.size());
-    const double D = opt->pore_diameter > 0.0 ? opt->pore_diameter : opt->pore_ratio * mean_d;
-    require(std::isfinite(D), "pore_diameter", D, "> 0 m");
-    generate::OpalOptions o = opt->opal;
-    Random rng(opt->seed);
-    nlohmann::json pore_params;
-    if (opt->pores == "fcc") {
-      if (opt->pore_count > 0 || opt->pore_fraction > 0.0)
-        fail_input("--pore-count / --pore-fraction: only with --pores random");
-      o.fcc.diameter = D;
-      o.fcc.orientation = generate::fcc_orientation_from_name(opt->orientation);
-      o.fcc.spacing_ratio = opt->pore_spacing;
-      if (!opt->pore_origin.empty()) {
-        o.fcc.auto_origin = false;
-        o.fcc.origin = {opt->pore_origin[0], opt->pore_origin[1], opt->pore_origin[2]};
-      }
-      const Vec3 per = generate::fcc_pore_period(o.fcc);
-      pore_params = {{"arrangement", "fcc"},
-                     {"orientation", generate::fcc_orientation_name(o.fcc.orientation)},
-                     {"spacing_ratio", o.fcc.spacing_ratio},
-                     {"lattice_period_m", {per.x, per.y, per.z}}};
-    } else {
-      if ((opt->pore_count > 0) == (opt->pore_fraction > 0.0))
-        fail_input("--pore-count and --pore-fraction: give exactly one of them with --pores random");
-      const Box region = generate::random_pore_region(in, o.substrate_layers);
-      generate::RandomPores rp;
-      rp.diameter = D;
-      const double v_pore = std::numbers::pi / 6.0 * D * D * D;
-      if (opt->pore_fraction > 0.0) {
-        require(opt->pore_fraction < 0.6, "pore_fraction", opt->pore_fraction, "in (0, 0.6)");
-        rp.count = std::max(1L, std::lround(opt->pore_fraction * region.volume() / v_pore));
-      } else {
-        rp.count = opt->pore_count;
-      }
-      o.pores = generate::random_pores(region, rp, rng);
-      pore_params = {{"arrangement", "random"},
-                     {"count", rp.count},
-                     {"pore_fraction_of_region", static_cast<double>(rp.count) * v_pore / region.volume()},
-                     {"region_lo_m", {region.lo.x, region.lo.y, region.lo.z}},
-                     {"region_length_m", {region.length.x, region.length.y, region.length.z}},
-                     {"seed", opt->seed}};
-    }
-    pore_params["diameter_m"] = D;
-    pore_params["ratio_to_mean_particle_diameter"] = D / mean_d;
     io::ensure_directory(opt->out);
     generate::OpalSummary s;
     const Packing model = generate::build_opal(in, o, &s, [&](const std::string& phase, double) {
@@ -146,7 +70,7 @@ void add_build_opal(CLI::App& build) {
     io::WriteOptions w;
     w.comment = fmt::format("packlab {} build opal {} pores={} D={:g} coating={:g} bond_cutoff={:g} "
                             "bond_radius_ratio={:g}",
-                            io::version(), opt->in, opt->pores, D, o.coating_thickness, o.bond_cutoff_ratio,
+                            io::version(), opt->in, opt->o.pores, D, o.coating_thickness, o.bond_cutoff_ratio,
                             o.bond_radius_ratio);
     io::write_packing(model, dir / "opal.vtu", w);
     Packing pore_packing;

@@ -36,6 +36,15 @@ void add_calibrate_compress(CLI::App& calibrate);
 // Config-file references (io/config.hpp schemas) of the commands that read one, and the
 // `config-keys` command printing them all.
 std::string vem_config_reference();
+std::string ls_config_reference();
+std::string scrm_config_reference();
+std::string shake_config_reference();
+std::string fba_config_reference();
+std::string opal_config_reference();
+std::string relax_config_reference();
+std::string lattice_config_reference();
+std::string random_config_reference();
+std::string bond_config_reference();
 std::string shear_config_reference();     // also read by `calibrate shear`
 std::string compress_config_reference();  // also read by `calibrate compress`
 std::string config_reference();

@@ -1,4 +1,4 @@
-// packlab generate scrm --phi X --particles N [sizes as generate ls] [--growth-rate G]
+// packlab generate scrm [--config FILE.toml] --phi X --particles N [sizes as generate ls] [--growth-rate G]
 //   [--window 0.02] [--max-trials 150] [--adaptive] [--blocks-per-cycle 5] [--shakes-per-cycle 1]
 //   [--final-shakes 10] [--seed S] --out DIR
 // Shaking collective rearrangement model: LS growth alternated with global shakes, then final
@@ -18,54 +18,45 @@
 
 namespace packlab::cli {
 
+std::string scrm_config_reference() {
+  io::ScrmOptions o;
+  LsRunOptions run;
+  return io::scrm_options(o).append(rdf_output_options("generate scrm", run.rdf)).markdown();
+}
+
 void add_generate_scrm(CLI::App& generate) {
   struct Options {
+    io::ScrmOptions scrm;
     LsRunOptions run;
-    generate::ShakeParams shake;
-    long blocks_per_cycle = 5, shakes_per_cycle = 1, final_shakes = 10;
   };
   auto opt = std::make_shared<Options>();
-  opt->run.phi = 0.6;
   auto* cmd = generate.add_subcommand(
       "scrm", "Shaking collective rearrangement: LS growth alternated with Monte-Carlo shaking, then final shakes");
-  add_ls_options(*cmd, opt->run);
-  cmd->add_option("--window", opt->shake.window, "Shake window R_sh in units of the particle radius")
-      ->capture_default_str();
-  cmd->add_option("--max-trials", opt->shake.max_trials, "Trials per visit N_sh")->capture_default_str();
-  cmd->add_flag("--adaptive", opt->shake.adaptive, "Adapt the shake window to the free distance");
-  cmd->add_option("--blocks-per-cycle", opt->blocks_per_cycle, "LS blocks between shakes")->capture_default_str();
-  cmd->add_option("--shakes-per-cycle", opt->shakes_per_cycle, "Global shakes after each LS segment")
-      ->capture_default_str();
-  cmd->add_option("--final-shakes", opt->final_shakes, "Global shakes at the target volume fraction")
-      ->capture_default_str();
+  add_ls_run_options(*cmd, opt->run, io::scrm_options(opt->scrm));
   cmd->callback([opt] {
     const auto t0 = std::chrono::steady_clock::now();
-    LsRunOptions& o = opt->run;
-    generate::ScrmParams sp;
-    sp.ls = o.ls;
-    sp.ls.target_volume_fraction = o.phi;
-    sp.shake = opt->shake;
-    sp.blocks_per_cycle = opt->blocks_per_cycle;
-    sp.shakes_per_cycle = opt->shakes_per_cycle;
-    sp.final_shakes = opt->final_shakes;
-    sp.validate();
-    io::ensure_directory(o.out);
+    resolve_ls_run_options(opt->run);
+    const io::ScrmOptions& o = opt->scrm;
+    const LsRunOptions& run = opt->run;
+    const generate::ScrmParams sp = o.params();
+    run.flags->schema().validate();
+    io::ensure_directory(run.out);
     Random rng(o.seed);
     const generate::LsStart start = generate::make_ls_start(o.particles, o.classes(), o.radius, o.phi, rng);
     generate::LsSimulation sim(start.box, start.points, start.unit_radius, sp.ls, rng);
-    Progress progress("generate scrm", 0, !o.quiet);
+    Progress progress("generate scrm", 0, !run.quiet);
     const generate::ScrmResult r = run_scrm(sim, sp, rng, [&](const generate::LsStatus& ls, const generate::ShakeStats& s) {
       progress.update(ls.blocks + s.sweeps, fmt::format("phi {:.5f}, {} global shakes", ls.volume_fraction, s.sweeps));
     });
     progress.finish();
-    const std::filesystem::path dir(o.out);
+    const std::filesystem::path dir(run.out);
     write_packing_outputs(r.packing, dir,
                           fmt::format("packlab {} generate scrm phi={:.8f} N={} growth_rate={:g} window={:g} "
                                       "final_shakes={} seed={}",
                                       io::version(), r.packing.volume_fraction(), r.packing.size(), sp.ls.growth_rate,
                                       sp.shake.window, sp.final_shakes, o.seed));
     nlohmann::json report = io::report_header("generate scrm");
-    report["parameters"] = o.parameters();
+    report["parameters"] = ls_parameters(o);
     report["parameters"]["window"] = sp.shake.window;
     report["parameters"]["max_trials"] = sp.shake.max_trials;
     report["parameters"]["adaptive"] = sp.shake.adaptive;
@@ -87,13 +78,13 @@ void add_generate_scrm(CLI::App& generate) {
                          {"mean_step_over_radius", r.shake.mean_step},
                          {"final_window", r.shake.window},
                          {"min_contact_ratio", generate::min_contact_ratio(r.packing)}};
-    report["results"]["rdf"] = rdf_of(r.packing, dir, o.rdf_dr, o.rdf_rmax, !o.no_plots);
+    report["results"]["rdf"] = rdf_of(r.packing, dir, run.rdf.dr, run.rdf.r_max, !run.no_plots);
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     report["seconds"] = seconds;
     io::write_report(dir / "report.json", report);
-    if (!o.quiet)
+    if (!run.quiet)
       fmt::print("phi {:.6f}: {} collisions, {} global shakes ({} of {} trial moves executed); wrote {} in {:.2f} s\n",
-                 r.packing.volume_fraction(), r.ls.collisions, r.shake.sweeps, r.shake.moves, r.shake.trials, o.out,
+                 r.packing.volume_fraction(), r.ls.collisions, r.shake.sweeps, r.shake.moves, r.shake.trials, run.out,
                  seconds);
   });
 }

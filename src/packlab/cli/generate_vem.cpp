@@ -1,6 +1,6 @@
 // packlab generate vem [--config FILE.toml] [--structural N] [--voids N] [--phi-s X] [--radius R]
-//   [--seed S] [--threads T] [--max-q Q] [--snapshot-every K] [--checkpoint-seconds S]
-//   [--no-plots] [--quiet] --out DIR
+//   [--seed S] [--threads T] [--max-q Q] [--snapshot-every K] [--checkpoint-seconds S] [any option
+//   of io::vem_options() as --key-with-dashes] [--no-plots] [--quiet] --out DIR
 // packlab generate vem --resume DIR [--threads T]
 //
 // The void expansion method (generate/vem.hpp, docs/vem.md). DIR receives packing.xyz and
@@ -20,12 +20,14 @@
 #include "packlab/analyze/inflection.hpp"
 #include "packlab/analyze/power_law.hpp"
 #include "packlab/cli/commands.hpp"
+#include "packlab/cli/options.hpp"
 #include "packlab/core/binary_io.hpp"
 #include "packlab/core/error.hpp"
 #include "packlab/core/progress.hpp"
 #include "packlab/generate/vem.hpp"
 #include "packlab/io/atomic_file.hpp"
 #include "packlab/io/config.hpp"
+#include "packlab/io/options.hpp"
 #include "packlab/io/packing_io.hpp"
 #include "packlab/io/plot.hpp"
 #include "packlab/io/report.hpp"
@@ -45,59 +47,37 @@ struct RunSettings {
 
 constexpr std::uint64_t settings_magic = 0x31544553434D4556ULL;  // "VEMCSET1"
 
-void add_material_keys(io::ConfigSchema& schema, const std::string& section, dem::Material& m) {
-  schema.number(section + ".normal_stiffness", m.normal_stiffness, "Particle normal stiffness k_n [N/m]")
-      .number(section + ".shear_stiffness", m.shear_stiffness, "Particle shear stiffness k_s [N/m]")
-      .number(section + ".density", m.density, "Density [kg/m^3]")
-      .number(section + ".damping", m.damping, "Local damping coefficient alpha, in [0, 1)")
-      .number(section + ".friction", m.friction, "Coulomb friction coefficient mu [-]");
-}
-
-// Every key of the config file, bound to the parameters it sets (docs/config-reference.md is
-// generated from this). Unknown keys are errors.
-io::ConfigSchema vem_schema(generate::VemParams& p, RunSettings& s) {
-  io::ConfigSchema schema("generate vem", "The void expansion method (docs/vem.md); flags override the file.");
-  schema.integer("structural", p.structural, "Structural particles N_S")
-      .integer("voids", p.voids, "Void particles N_V")
-      .number("phi_s", p.phi_s, "Volume fraction of the structural particles Phi_S, in (0, 0.64)")
-      .number("radius", p.radius, "Structural radius r_S [m]")
-      .integer("seed", p.seed, "Seed of the random generator")
-      .integer("threads", p.threads, "OpenMP threads (0 = all cores)")
-      .integer("blowup_steps", p.blowup_steps, "Blow-up steps m of the structural particles")
-      .number("void_radius_ratio", p.void_radius_ratio,
-              "Initial void radius and its growth per cycle, r_V0 / r_S")
-      .number("contact_eps", p.contact_eps, "Coordination contact tolerance eps: contact at (1 + eps) 2 r_S")
-      .number("void_mass_scaling", p.void_mass_scaling,
-              "Void mass scaling c (0 = none; docs/vem.md): quasi-static, results shown not to depend on it")
-      .text("time_step_rule", p.time_step_rule,
-            "'stiffness_sum' (PFC: safety * min sqrt(m_i / sum of i's contact stiffnesses)) or 'contacts' "
-            "(safety * min over touching pairs of sqrt(m_lighter / k))")
-      .number("time_step_safety", p.time_step_safety, "Time step as a fraction of sqrt(m/k) (PFC's default 0.8)")
-      .number("skin", p.skin, "Verlet skin / r_S")
-      .number_to_all("damping", {&p.structural_material.damping, &p.void_material.damping},
-                     "Local damping of both materials (overridden by the material tables)")
-      .number_to_all("friction", {&p.structural_material.friction, &p.void_material.friction},
-                     "Friction of both materials (overridden by the material tables)");
-  add_material_keys(schema, "structural_material", p.structural_material);
-  add_material_keys(schema, "void_material", p.void_material);
-  schema.number("relax.tolerance", p.relax_tolerance, "A relaxation ends when the unbalanced force ratio is below this")
-      .number("relax.overlap", p.relax_overlap, "... or when the largest overlap / (r_i + r_j) is below this")
-      .integer("relax.max_steps", p.relax_max_steps, "Step limit of one relaxation")
-      .integer("relax.check_interval", p.relax_check_interval, "Steps between two checks of the criterion")
-      .number("stop.strain_energy", p.stop_strain_energy,
-              "Stage III: stop when E_strain / (N_S k_n,S r_S^2) exceeds this")
-      .number("stop.max_q", p.max_q, "Stop at this q = r_V / r_S at the latest")
-      .integer("output.snapshot_every", s.snapshot_every,
-               "Save the structural packing before every k-th increment (0 = never)")
+// The command's own settings: output and the analysis of the curve (not keywords of
+// packlab.generate_vem, which returns the curve for find_inflection()).
+io::ConfigSchema run_settings_options(RunSettings& s) {
+  io::ConfigSchema schema("generate vem");
+  schema.integer("output.snapshot_every", s.snapshot_every,
+                 "Save the structural packing before every k-th increment (0 = never)")
+      .range(ranges::non_negative)
+      .alias("snapshot_every")
+      .command_only()
       .number("output.checkpoint_seconds", s.checkpoint_seconds, "Wall-clock seconds between checkpoints")
+      .unit("s")
+      .range(ranges::positive)
+      .alias("checkpoint_seconds")
+      .command_only()
       .boolean("output.plots", s.plots, "Draw cn_curve.png")
+      .command_only()
       .number("analysis.window_widths", s.window_widths, "Inflection fit window, in logistic widths")
+      .range(ranges::positive)
+      .command_only()
       .number("analysis.power_law_max_excess", s.power_law_max_excess,
-              "Largest Phi_T - Phi_T,i in the beta fit of eq. 9");
+              "Largest Phi_T - Phi_T,i in the beta fit of eq. 9")
+      .range(ranges::positive)
+      .command_only();
   return schema;
 }
 
-void read_config(const std::string& file, generate::VemParams& p, RunSettings& s) { vem_schema(p, s).read_file(file); }
+// Every key of the config file and every flag, bound to the parameters it sets
+// (docs/config-reference.md is generated from this). Unknown keys are errors.
+io::ConfigSchema vem_schema(generate::VemParams& p, RunSettings& s) {
+  return io::vem_options(p).append(run_settings_options(s));
+}
 
 }  // namespace
 
@@ -108,14 +88,6 @@ std::string vem_config_reference() {
 }
 
 namespace {
-
-void validate_settings(const RunSettings& s) {
-  require(s.snapshot_every >= 0, "output.snapshot_every", static_cast<double>(s.snapshot_every),
-          "an integer >= 0 (0 = no snapshots)");
-  require(s.checkpoint_seconds > 0.0, "output.checkpoint_seconds", s.checkpoint_seconds, "> 0 s");
-  require(s.window_widths > 0.0, "analysis.window_widths", s.window_widths, "> 0");
-  require(s.power_law_max_excess > 0.0, "analysis.power_law_max_excess", s.power_law_max_excess, "> 0");
-}
 
 void write_checkpoint(const std::filesystem::path& dir, const generate::Vem& vem, const RunSettings& s) {
   io::write_atomically(dir / "checkpoint.bin", [&](std::ostream& out) {
@@ -145,37 +117,13 @@ std::string curve_csv(const generate::Vem& vem) {
   return csv;
 }
 
-nlohmann::json params_json(const generate::VemParams& p) {
-  const auto material = [](const dem::Material& m) {
-    return nlohmann::json{{"normal_stiffness_N_per_m", m.normal_stiffness},
-                          {"shear_stiffness_N_per_m", m.shear_stiffness},
-                          {"density_kg_per_m3", m.density},
-                          {"damping", m.damping},
-                          {"friction", m.friction}};
-  };
-  return {{"structural", p.structural},
-          {"voids", p.voids},
-          {"phi_s", p.phi_s},
-          {"radius_m", p.radius},
-          {"blowup_steps", p.blowup_steps},
-          {"void_radius_ratio", p.void_radius_ratio},
-          {"structural_material", material(p.structural_material)},
-          {"void_material", material(p.void_material)},
-          {"stiffness_rule", "particle"},
-          {"contact_law", "linear"},
-          {"time_step_rule", p.time_step_rule},
-          {"contact_eps", p.contact_eps},
-          {"relax", {{"tolerance", p.relax_tolerance},
-                     {"overlap", p.relax_overlap},
-                     {"max_steps", p.relax_max_steps},
-                     {"check_interval", p.relax_check_interval},
-                     {"criterion", "unbalanced force ratio of the touching particles < tolerance, or max overlap/(r_i+r_j) < overlap"}}},
-          {"void_mass_scaling", p.void_mass_scaling},
-          {"stop", {{"strain_energy", p.stop_strain_energy}, {"max_q", p.max_q}}},
-          {"time_step_safety", p.time_step_safety},
-          {"skin", p.skin},
-          {"threads", p.threads},
-          {"seed", p.seed}};
+nlohmann::json params_json(generate::VemParams p) {
+  nlohmann::json out = io::vem_options(p).json();
+  out["stiffness_rule"] = "particle";
+  out["contact_law"] = "linear";
+  out["relax"]["criterion"] =
+      "unbalanced force ratio of the touching particles < tolerance, or max overlap/(r_i+r_j) < overlap";
+  return out;
 }
 
 nlohmann::json finish(const std::filesystem::path& dir, const generate::Vem& vem, const RunSettings& s,
@@ -305,6 +253,7 @@ void add_generate_vem(CLI::App& generate) {
     std::string config, out, resume;
     generate::VemParams params;
     RunSettings settings;
+    std::unique_ptr<OptionFlags> method, run;
     bool no_plots = false;
     bool quiet = false;
     bool check = false;
@@ -313,20 +262,8 @@ void add_generate_vem(CLI::App& generate) {
   auto* cmd = generate.add_subcommand(
       "vem", "Void expansion method: porous packings by growing void particles; CN(q) curve and its inflection point");
   cmd->add_option("--config", opt->config, "TOML file with any parameter (docs/vem.md); flags override it");
-  cmd->add_option("--structural", opt->params.structural, "Number of structural particles N_S")->capture_default_str();
-  cmd->add_option("--voids", opt->params.voids, "Number of void particles N_V")->capture_default_str();
-  cmd->add_option("--phi-s", opt->params.phi_s, "Volume fraction of the structural particles Phi_S")
-      ->capture_default_str();
-  cmd->add_option("--radius", opt->params.radius, "Structural particle radius r_S [m]")->capture_default_str();
-  cmd->add_option("--seed", opt->params.seed, "Random seed")->capture_default_str();
-  cmd->add_option("--threads", opt->params.threads, "OpenMP threads (0 = all cores)")->capture_default_str();
-  cmd->add_option("--max-q", opt->params.max_q, "Largest q = r_V/r_S recorded")->capture_default_str();
-  cmd->add_option("--snapshot-every", opt->settings.snapshot_every,
-                  "Write the structural packing before every K-th void increment (0 = never)")
-      ->capture_default_str();
-  cmd->add_option("--checkpoint-seconds", opt->settings.checkpoint_seconds,
-                  "Wall-clock seconds between checkpoints (DIR/checkpoint.bin)")
-      ->capture_default_str();
+  opt->method = std::make_unique<OptionFlags>(cmd, io::vem_options(opt->params));
+  opt->run = std::make_unique<OptionFlags>(cmd, run_settings_options(opt->settings));
   cmd->add_option("--out", opt->out, "Output folder");
   cmd->add_option("--resume", opt->resume, "Continue the run whose checkpoint is in this folder");
   cmd->add_flag("--no-plots", opt->no_plots, "Do not make PNG plots");
@@ -335,18 +272,21 @@ void add_generate_vem(CLI::App& generate) {
   cmd->callback([opt, cmd] {
     const auto given = [&](const char* name) { return cmd->count(name) > 0; };
     std::unique_ptr<generate::Vem> vem;
-    RunSettings settings;
+    RunSettings& settings = opt->settings;
     std::filesystem::path dir;
     if (!opt->resume.empty()) {
-      for (const char* name : {"--config", "--structural", "--voids", "--phi-s", "--radius", "--seed", "--max-q"})
-        if (given(name))
-          fail_input(fmt::format("{} cannot be combined with --resume: the run continues with its saved parameters",
-                                 name));
+      // The method's parameters are the saved ones; only the thread count and the run's own
+      // settings may change.
+      std::string refused = given("--config") ? "--config" : opt->method->first_given({"threads"});
+      if (!refused.empty())
+        fail_input(fmt::format("{} cannot be combined with --resume: the run continues with its saved parameters",
+                               refused));
       if (given("--out") && std::filesystem::path(opt->out) != std::filesystem::path(opt->resume))
         fail_input("--out: a resumed run writes into its own folder (--resume DIR); drop --out");
       dir = opt->resume;
       std::ifstream in(dir / "checkpoint.bin", std::ios::binary);
       if (!in) fail_input(fmt::format("--resume = {}: no checkpoint.bin in this folder", opt->resume));
+      opt->method->apply();
       vem = generate::Vem::resume(in, given("--threads") ? opt->params.threads : 0);
       std::uint64_t magic = 0;
       std::uint8_t plots = 1;
@@ -358,28 +298,21 @@ void add_generate_vem(CLI::App& generate) {
       binary::read(in, settings.power_law_max_excess, "power_law_max_excess");
       binary::read(in, plots, "plots");
       settings.plots = plots != 0;
-      if (given("--snapshot-every")) settings.snapshot_every = opt->settings.snapshot_every;
-      if (given("--checkpoint-seconds")) settings.checkpoint_seconds = opt->settings.checkpoint_seconds;
+      opt->run->apply();
       if (opt->no_plots) settings.plots = false;
-      validate_settings(settings);
+      opt->run->schema().validate();
     } else {
       if (opt->out.empty()) fail_input("--out: required (the output folder), or --resume DIR");
       dir = opt->out;
-      generate::VemParams params;
-      if (!opt->config.empty()) read_config(opt->config, params, settings);
-      const generate::VemParams& f = opt->params;
-      if (given("--structural")) params.structural = f.structural;
-      if (given("--voids")) params.voids = f.voids;
-      if (given("--phi-s")) params.phi_s = f.phi_s;
-      if (given("--radius")) params.radius = f.radius;
-      if (given("--seed")) params.seed = f.seed;
-      if (given("--threads")) params.threads = f.threads;
-      if (given("--max-q")) params.max_q = f.max_q;
-      if (given("--snapshot-every")) settings.snapshot_every = opt->settings.snapshot_every;
-      if (given("--checkpoint-seconds")) settings.checkpoint_seconds = opt->settings.checkpoint_seconds;
+      // default < config file < flag
+      if (!opt->config.empty()) vem_schema(opt->params, settings).read_file(opt->config);
+      opt->method->apply();
+      opt->run->apply();
       if (opt->no_plots) settings.plots = false;
+      const generate::VemParams& params = opt->params;
       params.validate();
-      validate_settings(settings);
+      opt->method->schema().validate();
+      opt->run->schema().validate();
       if (opt->check) {
         const double l = generate::vem_box_edge(params.structural, params.radius, params.phi_s);
         fmt::print("generate vem: N_S = {}, N_V = {} (n = {:g}), Phi_S = {:g}, r_S = {:g} m, box edge {:.6g} m "

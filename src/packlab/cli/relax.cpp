@@ -1,5 +1,6 @@
-// packlab relax IN OUT [--normal-stiffness --shear-stiffness --friction --damping --density
-//   --time-step --steps --tolerance --threads --seed --stiffness-rule --log FILE.csv]
+// packlab relax IN OUT [--config FILE.toml] [--contact-law L] [every material property as a flag:
+//   --normal-stiffness, --shear-stiffness, --friction, --damping, --density, ...] [--stiffness-rule R]
+//   [--time-step --time-step-safety --steps --tolerance --check-interval --threads --seed] [--log FILE.csv]
 #include <fmt/format.h>
 
 #include <chrono>
@@ -8,82 +9,53 @@
 #include <sstream>
 
 #include "packlab/cli/commands.hpp"
+#include "packlab/cli/options.hpp"
 #include "packlab/core/progress.hpp"
 #include "packlab/dem/engine.hpp"
 #include "packlab/dem/relax.hpp"
 #include "packlab/io/atomic_file.hpp"
+#include "packlab/io/options.hpp"
 #include "packlab/io/packing_io.hpp"
 #include "packlab/io/plot.hpp"
 
 namespace packlab::cli {
 
+std::string relax_config_reference() {
+  io::RelaxRun r;
+  return io::relax_options(r).markdown();
+}
+
 void add_relax(CLI::App& app) {
   struct Options {
-    std::string in, out, log;
-    dem::Material material;
-    std::string stiffness_rule = "particle";
-    double time_step = 0.0;
-    double time_step_safety = 0.2;
-    long steps = 100000;
-    double tolerance = 1e-3;
-    long check_interval = 100;
-    int threads = 0;
-    std::uint64_t seed = 1;
+    std::string in, out, log, config;
+    io::RelaxRun run;
+    std::unique_ptr<OptionFlags> flags;
     bool quiet = false;
     bool no_plots = false;
   };
   auto opt = std::make_shared<Options>();
   auto* cmd = app.add_subcommand(
-      "relax", "Relax a packing with the linear contact law and local damping until the forces balance");
+      "relax", "Relax a packing with a contact law and local damping until the forces balance");
   cmd->add_option("in", opt->in, "Input packing")->required();
   cmd->add_option("out", opt->out, "Output packing (format by extension)")->required();
-  cmd->add_option("--normal-stiffness", opt->material.normal_stiffness, "Normal stiffness k_n [N/m]")
-      ->capture_default_str();
-  cmd->add_option("--shear-stiffness", opt->material.shear_stiffness, "Shear stiffness k_s [N/m]")
-      ->capture_default_str();
-  cmd->add_option("--friction", opt->material.friction, "Coulomb friction coefficient [-]")->capture_default_str();
-  cmd->add_option("--damping", opt->material.damping, "Local damping coefficient alpha in [0, 1)")
-      ->capture_default_str();
-  cmd->add_option("--density", opt->material.density,
-                  "Particle density [kg/m^3], used when the file has none (LAMMPS data files do)")
-      ->capture_default_str();
-  cmd->add_option("--stiffness-rule", opt->stiffness_rule,
-                  "particle: stiffnesses are PFC particle stiffnesses in series (contact = k/2); "
-                  "contact: they are contact stiffnesses (LAMMPS kn)")
-      ->capture_default_str();
-  cmd->add_option("--time-step", opt->time_step, "Time step [s]; 0 = safety * min sqrt(m/k)")
-      ->capture_default_str();
-  cmd->add_option("--time-step-safety", opt->time_step_safety, "Safety factor of the automatic time step")
-      ->capture_default_str();
-  cmd->add_option("--steps", opt->steps, "Step limit")->capture_default_str();
-  cmd->add_option("--tolerance", opt->tolerance,
-                  "Stop when the mean unbalanced force ratio falls below this; 0 runs exactly --steps steps")
-      ->capture_default_str();
-  cmd->add_option("--check-interval", opt->check_interval, "Steps between diagnostics")->capture_default_str();
-  cmd->add_option("--threads", opt->threads, "OpenMP threads (0 = all cores)")->capture_default_str();
-  cmd->add_option("--seed", opt->seed, "Accepted for uniformity; relax draws no random numbers")
-      ->capture_default_str();
+  cmd->add_option("--config", opt->config, "TOML file with any of the options; flags override it");
+  opt->flags = std::make_unique<OptionFlags>(cmd, io::relax_options(opt->run));
   cmd->add_option("--log", opt->log,
                   "Write the diagnostics of every check to this CSV file (and a plot beside it, .png)");
   cmd->add_flag("--no-plots", opt->no_plots, "Do not draw the PNG plot of the log");
   cmd->add_flag("--quiet", opt->quiet, "No progress output");
   cmd->callback([opt] {
     const auto t0 = std::chrono::steady_clock::now();
+    if (!opt->config.empty()) opt->flags->schema().read_file(opt->config);
+    opt->flags->apply();
     const Packing packing = io::read_packing(opt->in);
     // Check the output path before running (no surprise after a long run).
     (void)io::format_from_path(opt->out);
-    dem::EngineConfig config;
-    config.types = {opt->material};
-    config.stiffness_rule = dem::stiffness_rule_from_name(opt->stiffness_rule);
-    config.time_step = opt->time_step;
-    config.time_step_safety = opt->time_step_safety;
-    config.threads = opt->threads;
+    const dem::EngineConfig config = opt->run.config();
+    const dem::Material& material = config.types.front();
     dem::Engine engine(packing, config);
-    Progress progress("relax", opt->steps, !opt->quiet);
-    dem::RelaxOptions ro;
-    ro.max_steps = opt->steps;
-    ro.tolerance = opt->tolerance;
-    ro.check_interval = opt->check_interval;
+    Progress progress("relax", opt->run.relax.max_steps, !opt->quiet);
+    dem::RelaxOptions ro = opt->run.relax;
     ro.on_check = [&](const dem::Diagnostics& d) {
       progress.update(d.step, fmt::format("unbalanced {:.3g}, CN {:.3f}", d.unbalanced_force_ratio,
                                           d.mean_coordination));
@@ -92,8 +64,8 @@ void add_relax(CLI::App& app) {
     progress.finish();
     io::WriteOptions w;
     w.comment = fmt::format("packlab relax {} steps={} kn={:g} ks={:g} mu={:g} damping={:g} dt={:.6g}", opt->in,
-                            result.steps, opt->material.normal_stiffness, opt->material.shear_stiffness,
-                            opt->material.friction, opt->material.damping, engine.time_step());
+                            result.steps, material.normal_stiffness, material.shear_stiffness, material.friction,
+                            material.damping, engine.time_step());
     io::write_packing(engine.packing(), opt->out, w);
     if (!opt->log.empty()) {
       std::ostringstream csv;

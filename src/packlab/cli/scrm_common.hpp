@@ -1,5 +1,5 @@
 // Pieces shared by `generate ls`, `generate scrm`, `shake` and `analyze rdf`: the RDF tables,
-// plots and report section (analyze_rdf.cpp) and the LS options (generate_ls.cpp).
+// plots and report section (analyze_rdf.cpp) and the LS run options (generate_ls.cpp).
 #pragma once
 
 #include <filesystem>
@@ -13,6 +13,9 @@
 #include "packlab/analyze/rdf.hpp"
 #include "packlab/core/packing.hpp"
 #include "packlab/generate/ls.hpp"
+#include "packlab/cli/options.hpp"
+#include "packlab/io/config.hpp"
+#include "packlab/io/options.hpp"
 
 namespace packlab::cli {
 
@@ -26,22 +29,23 @@ std::vector<double> class_volume_fractions(const Packing& packing, const std::ve
 nlohmann::json write_rdf_outputs(const analyze::Rdf& rdf, const std::vector<double>& class_volume_fraction,
                                  const std::filesystem::path& dir, bool partial, bool plots);
 
-// Options of an LS run from random points (generate ls and generate scrm).
+// The command's side of `generate ls` and `generate scrm` (the method's options are
+// io::ls_options / io::scrm_options): output folder, config file, the RDF of the result.
 struct LsRunOptions {
-  double phi = 0.0;  // 0 = to jamming
-  long particles = 2000;
-  std::vector<double> sizes{1.0};
-  std::vector<double> number_fractions, volume_fractions;
-  double radius = 0.5;
-  generate::LsParams ls;
-  std::uint64_t seed = 1;
-  std::string out;
-  double rdf_dr = 0.01, rdf_rmax = 8.0;
+  std::string out, config;
+  analyze::RdfParams rdf;
   bool no_plots = false, quiet = false;
-  generate::SizeClasses classes() const;
-  nlohmann::json parameters() const;
+  std::unique_ptr<OptionFlags> flags;
 };
-void add_ls_options(CLI::App& cmd, LsRunOptions& opt);
+// --config, the flags of `method` and of the RDF, --out, --no-plots, --quiet.
+void add_ls_run_options(CLI::App& cmd, LsRunOptions& run, const io::ConfigSchema& method);
+// Defaults, then the config file, then the flags.
+void resolve_ls_run_options(LsRunOptions& run);
+// The report's parameters of an LS start (with the normalized number fractions and the counts).
+nlohmann::json ls_parameters(const io::LsOptions& o);
+
+// The RDF of the result as the command's own settings: rdf.dr (--rdf-dr), rdf.rmax (--rdf-rmax).
+io::ConfigSchema rdf_output_options(const std::string& command, analyze::RdfParams& rdf);
 
 // Writes DIR/packing.xyz and DIR/packing.vtu (with a provenance comment).
 void write_packing_outputs(const Packing& packing, const std::filesystem::path& dir, const std::string& comment);

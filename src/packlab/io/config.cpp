@@ -1,10 +1,12 @@
 #include "packlab/io/config.hpp"
 
 #include <fmt/format.h>
+#include <toml++/toml.h>
 
 #include <algorithm>
 #include <limits>
-#include <toml++/toml.h>
+#include <stdexcept>
+#include <string>
 
 #include "packlab/core/error.hpp"
 
@@ -38,42 +40,259 @@ std::vector<std::string> names_below(const std::vector<std::string>& keys, const
 
 }  // namespace
 
-ConfigSchema::ConfigSchema(std::string command, std::string summary)
-    : command_(std::move(command)), summary_(std::move(summary)) {}
+std::string unit_suffix(std::string_view unit) {
+  std::string out;
+  for (const char c : unit) {
+    if (c == '/')
+      out += "_per_";
+    else if (c == '^' || c == ' ')
+      continue;
+    else
+      out += c;
+  }
+  return out;
+}
 
-ConfigSchema& ConfigSchema::add(Key key) {
-  keys_.push_back(std::move(key));
+namespace {
+
+std::string snake_to_flag(std::string name) {
+  std::replace(name.begin(), name.end(), '.', '-');
+  std::replace(name.begin(), name.end(), '_', '-');
+  return "--" + name;
+}
+
+std::string key_to_keyword(std::string key) {
+  std::replace(key.begin(), key.end(), '.', '_');
+  return key;
+}
+
+std::string list_text(const std::vector<double>& v) {
+  std::string out;
+  for (const double x : v) out += (out.empty() ? "" : ", ") + shortest(x);
+  return "[" + out + "]";
+}
+
+std::string type_text(const ConfigSchema::Value& v) {
+  return std::visit(
+      Overloaded{[](double x) { return shortest(x); }, [](std::int64_t x) { return fmt::format("{}", x); },
+                 [](bool x) { return std::string(x ? "true" : "false"); },
+                 [](const std::string& x) { return "\"" + x + "\""; },
+                 [](const std::vector<double>& x) { return list_text(x); }},
+      v);
+}
+
+}  // namespace
+
+std::string ConfigSchema::Field::flag() const { return snake_to_flag(key); }
+std::string ConfigSchema::Field::keyword() const { return key_to_keyword(key); }
+
+std::vector<std::string> ConfigSchema::Field::flags() const {
+  std::vector<std::string> out{flag()};
+  for (const std::string& a : aliases) out.push_back(snake_to_flag(a));
+  return out;
+}
+
+std::vector<std::string> ConfigSchema::Field::keywords() const {
+  std::vector<std::string> out{keyword()};
+  out.insert(out.end(), aliases.begin(), aliases.end());
+  return out;
+}
+
+nlohmann::json ConfigSchema::Field::value() const {
+  return std::visit(Overloaded{[](const std::vector<double*>& ts) {
+                                 return ts.empty() ? nlohmann::json() : nlohmann::json(*ts.front());
+                               },
+                               [](auto* t) { return nlohmann::json(*t); }},
+                    target);
+}
+
+ConfigSchema::ConfigSchema(std::string command, std::string summary, std::string python_function)
+    : command_(std::move(command)), summary_(std::move(summary)), python_function_(std::move(python_function)) {}
+
+ConfigSchema& ConfigSchema::add(Field field) {
+  fields_.push_back(std::move(field));
   return *this;
 }
 
+ConfigSchema::Field& ConfigSchema::last() {
+  if (fields_.empty()) throw std::logic_error("ConfigSchema: a modifier before the first field");
+  return fields_.back();
+}
+
 ConfigSchema& ConfigSchema::number(const std::string& key, double& target, const std::string& description) {
-  return add({key, "number", shortest(target), description, &target});
+  return add({key, "number", shortest(target), description, "", {}, {}, true, true, &target});
 }
 ConfigSchema& ConfigSchema::integer(const std::string& key, long& target, const std::string& description) {
-  return add({key, "integer", fmt::format("{}", target), description, &target});
+  return add({key, "integer", fmt::format("{}", target), description, "", {}, {}, true, true, &target});
 }
 ConfigSchema& ConfigSchema::integer(const std::string& key, int& target, const std::string& description) {
-  return add({key, "integer", fmt::format("{}", target), description, &target});
+  return add({key, "integer", fmt::format("{}", target), description, "", {}, {}, true, true, &target});
 }
 ConfigSchema& ConfigSchema::integer(const std::string& key, std::uint64_t& target, const std::string& description) {
-  return add({key, "integer", fmt::format("{}", target), description, &target});
+  return add({key, "integer", fmt::format("{}", target), description, "", {}, {}, true, true, &target});
 }
 ConfigSchema& ConfigSchema::boolean(const std::string& key, bool& target, const std::string& description) {
-  return add({key, "boolean", target ? "true" : "false", description, &target});
+  return add({key, "boolean", target ? "true" : "false", description, "", {}, {}, true, true, &target});
 }
 ConfigSchema& ConfigSchema::text(const std::string& key, std::string& target, const std::string& description) {
-  return add({key, "string", "\"" + target + "\"", description, &target});
+  return add({key, "string", "\"" + target + "\"", description, "", {}, {}, true, true, &target});
+}
+ConfigSchema& ConfigSchema::numbers(const std::string& key, std::vector<double>& target,
+                                    const std::string& description) {
+  return add({key, "numbers", list_text(target), description, "", {}, {}, true, true, &target});
 }
 ConfigSchema& ConfigSchema::number_to_all(const std::string& key, std::vector<double*> targets,
                                           const std::string& description) {
   const std::string def = targets.empty() ? "" : shortest(*targets.front());
-  return add({key, "number", def, description, std::move(targets)});
+  return add({key, "number", def, description, "", {}, {}, true, false, std::move(targets)});
+}
+
+ConfigSchema& ConfigSchema::unit(std::string unit) {
+  last().unit = std::move(unit);
+  return *this;
+}
+ConfigSchema& ConfigSchema::range(const Range& range) {
+  last().range = range;
+  return *this;
+}
+ConfigSchema& ConfigSchema::alias(std::string snake_name) {
+  last().aliases.push_back(std::move(snake_name));
+  return *this;
+}
+ConfigSchema& ConfigSchema::command_only() {
+  last().python = false;
+  return *this;
+}
+ConfigSchema& ConfigSchema::append(const ConfigSchema& other) {
+  fields_.insert(fields_.end(), other.fields_.begin(), other.fields_.end());
+  return *this;
 }
 
 std::vector<std::string> ConfigSchema::keys() const {
   std::vector<std::string> out;
-  for (const Key& k : keys_) out.push_back(k.key);
+  for (const Field& f : fields_) out.push_back(f.key);
   return out;
+}
+
+std::vector<std::string> ConfigSchema::keywords() const {
+  std::vector<std::string> out;
+  for (const Field& f : fields_)
+    if (f.python)
+      for (std::string& k : f.keywords()) out.push_back(std::move(k));
+  return out;
+}
+
+const ConfigSchema::Field* ConfigSchema::find(std::string_view name) const {
+  for (const Field& f : fields_) {
+    if (f.key == name) return &f;
+    for (const std::string& n : f.flags())
+      if (n == name) return &f;
+    for (const std::string& n : f.keywords())
+      if (n == name) return &f;
+  }
+  return nullptr;
+}
+
+void ConfigSchema::set(const Field& field, const Value& value, std::string_view source) {
+  const auto wrong = [&](const char* what) {
+    fail_input(fmt::format("{} = {}: must be {}", source, type_text(value), what));
+  };
+  std::visit(Overloaded{
+                 [&](double* t) {
+                   if (const auto* i = std::get_if<std::int64_t>(&value))
+                     *t = static_cast<double>(*i);
+                   else if (const auto* d = std::get_if<double>(&value))
+                     *t = *d;
+                   else
+                     wrong("a number");
+                 },
+                 [&](const std::vector<double*>& ts) {
+                   double v = 0.0;
+                   if (const auto* i = std::get_if<std::int64_t>(&value))
+                     v = static_cast<double>(*i);
+                   else if (const auto* d = std::get_if<double>(&value))
+                     v = *d;
+                   else
+                     wrong("a number");
+                   for (double* t : ts) *t = v;
+                 },
+                 [&](bool* t) {
+                   if (const auto* b = std::get_if<bool>(&value))
+                     *t = *b;
+                   else
+                     wrong("true or false");
+                 },
+                 [&](std::string* t) {
+                   if (const auto* s = std::get_if<std::string>(&value))
+                     *t = *s;
+                   else
+                     wrong("a string in quotes");
+                 },
+                 [&](std::vector<double>* t) {
+                   if (const auto* l = std::get_if<std::vector<double>>(&value))
+                     *t = *l;
+                   else
+                     wrong("a list of numbers");
+                 },
+                 [&](auto* t) {  // the integer types
+                   using T = std::remove_pointer_t<decltype(t)>;
+                   const auto* i = std::get_if<std::int64_t>(&value);
+                   if (!i) wrong("an integer");
+                   if (*i < static_cast<std::int64_t>(std::numeric_limits<T>::min()) ||
+                       static_cast<long double>(*i) > static_cast<long double>(std::numeric_limits<T>::max()))
+                     fail_input(fmt::format("{} = {}: out of range", source, *i));
+                   *t = static_cast<T>(*i);
+                 },
+             },
+             field.target);
+}
+
+void ConfigSchema::set_text(const Field& field, const std::string& text, std::string_view source) {
+  const auto fail = [&](const char* what) { fail_input(fmt::format("{} = {}: must be {}", source, text, what)); };
+  if (field.type == "string") return set(field, text, source);
+  if (field.type == "numbers") {
+    std::vector<double> list;
+    std::size_t begin = 0;
+    while (begin <= text.size() && !text.empty()) {
+      const std::size_t comma = std::min(text.find(',', begin), text.size());
+      const std::string item = text.substr(begin, comma - begin);
+      std::size_t n = 0;
+      try {
+        list.push_back(std::stod(item, &n));
+      } catch (const std::exception&) {
+        n = std::string::npos;
+      }
+      if (n != item.size()) fail("a comma-separated list of numbers");
+      begin = comma + 1;
+    }
+    return set(field, list, source);
+  }
+  if (field.type == "boolean") {
+    if (text == "true" || text == "1" || text == "yes" || text == "on") return set(field, true, source);
+    if (text == "false" || text == "0" || text == "no" || text == "off") return set(field, false, source);
+    fail("true or false");
+  }
+  std::size_t used = 0;
+  if (field.type == "integer") {
+    std::int64_t v = 0;
+    try {
+      v = std::stoll(text, &used);
+    } catch (const std::out_of_range&) {
+      fail_input(fmt::format("{} = {}: out of range", source, text));
+    } catch (const std::exception&) {
+      fail("an integer");
+    }
+    if (used != text.size()) fail("an integer");
+    return set(field, v, source);
+  }
+  double v = 0.0;
+  try {
+    v = std::stod(text, &used);
+  } catch (const std::exception&) {
+    fail("a number");
+  }
+  if (used != text.size()) fail("a number");
+  set(field, v, source);
 }
 
 void ConfigSchema::read_file(const std::filesystem::path& path) const {
@@ -86,12 +305,31 @@ void ConfigSchema::read_file(const std::filesystem::path& path) const {
     fail_input(fmt::format("{}:{}: {}", file, e.source().begin.line, e.description()));
   }
   const std::vector<std::string> all = keys();
+  // set() on a copy of the field bound to scratch variables: checks without applying.
+  const auto check = [](const Field& field, const Value& value, const std::string& source) {
+    double d = 0.0;
+    long l = 0;
+    int i = 0;
+    std::uint64_t u = 0;
+    bool b = false;
+    std::string text;
+    std::vector<double> list;
+    Field scratch = field;
+    scratch.target = std::visit(
+        Overloaded{[&](double*) -> Target { return &d; }, [&](const std::vector<double*>&) -> Target { return &d; },
+                   [&](long*) -> Target { return &l; }, [&](int*) -> Target { return &i; },
+                   [&](std::uint64_t*) -> Target { return &u; }, [&](bool*) -> Target { return &b; },
+                   [&](std::string*) -> Target { return &text; },
+                   [&](std::vector<double>*) -> Target { return &list; }},
+        field.target);
+    set(scratch, value, source);
+  };
   // Walks the tables; every leaf must be a registered key of the right type.
   auto walk = [&](auto&& self, const toml::table& table, const std::string& prefix, bool apply) -> void {
     for (auto&& [k, node] : table) {
       const std::string full = prefix + std::string(k.str());
-      const auto it = std::find_if(keys_.begin(), keys_.end(), [&](const Key& key) { return key.key == full; });
-      if (it == keys_.end()) {
+      const auto it = std::find_if(fields_.begin(), fields_.end(), [&](const Field& f) { return f.key == full; });
+      if (it == fields_.end()) {
         const bool is_section = std::any_of(all.begin(), all.end(), [&](const std::string& key) {
           return key.compare(0, full.size() + 1, full + ".") == 0;
         });
@@ -104,40 +342,35 @@ void ConfigSchema::read_file(const std::filesystem::path& path) const {
         for (const std::string& name : names_below(all, prefix)) known += (known.empty() ? "" : ", ") + name;
         bad(file, full, "unknown key (known: " + known + ")");
       }
-      const auto number = [&] {
-        const auto v = node.template value<double>();
-        if (!v || node.is_boolean()) bad(file, full, "must be a number");
-        return *v;
-      };
-      std::visit(Overloaded{
-                     [&](double* t) {
-                       const double v = number();
-                       if (apply) *t = v;
-                     },
-                     [&](const std::vector<double*>& ts) {
-                       const double v = number();
-                       if (apply)
-                         for (double* t : ts) *t = v;
-                     },
-                     [&](bool* t) {
-                       if (!node.is_boolean()) bad(file, full, "must be true or false");
-                       if (apply) *t = *node.template value<bool>();
-                     },
-                     [&](std::string* t) {
-                       if (!node.is_string()) bad(file, full, "must be a string in quotes");
-                       if (apply) *t = *node.template value<std::string>();
-                     },
-                     [&](auto* t) {  // the integer types
-                       using T = std::remove_pointer_t<decltype(t)>;
-                       if (!node.is_integer()) bad(file, full, "must be an integer");
-                       const std::int64_t v = *node.template value<std::int64_t>();
-                       if (v < static_cast<std::int64_t>(std::numeric_limits<T>::min()) ||
-                           static_cast<long double>(v) > static_cast<long double>(std::numeric_limits<T>::max()))
-                         bad(file, full, fmt::format("{} is out of range", v));
-                       if (apply) *t = static_cast<T>(v);
-                     },
-                 },
-                 it->target);
+      Value value;
+      if (node.is_boolean()) {
+        value = *node.template value<bool>();
+      } else if (node.is_integer()) {
+        value = *node.template value<std::int64_t>();
+      } else if (node.is_floating_point()) {
+        value = *node.template value<double>();
+      } else if (node.is_string()) {
+        value = *node.template value<std::string>();
+      } else if (node.is_array() && it->type == "numbers") {
+        std::vector<double> list;
+        for (const toml::node& item : *node.as_array()) {
+          const auto v = item.template value<double>();
+          if (!v || item.is_boolean()) bad(file, full, "must be a list of numbers");
+          list.push_back(*v);
+        }
+        value = std::move(list);
+      } else {
+        const char* what = it->type == "number"    ? "must be a number"
+                           : it->type == "integer" ? "must be an integer"
+                           : it->type == "boolean" ? "must be true or false"
+                           : it->type == "numbers" ? "must be a list of numbers"
+                                                   : "must be a string in quotes";
+        bad(file, full, what);
+      }
+      if (apply)
+        set(*it, value, file + ": " + full);
+      else
+        check(*it, value, file + ": " + full);
     }
   };
   // Two passes: check everything first, so a bad file changes nothing.
@@ -145,16 +378,63 @@ void ConfigSchema::read_file(const std::filesystem::path& path) const {
   walk(walk, root, "", true);
 }
 
+void ConfigSchema::validate() const {
+  for (const Field& f : fields_) {
+    if (!f.range) continue;
+    const nlohmann::json v = f.value();
+    if (v.is_number()) require_in_range("", f.key, v.get<double>(), *f.range, f.unit);
+  }
+}
+
+nlohmann::json ConfigSchema::json() const {
+  nlohmann::json out = nlohmann::json::object();
+  for (const Field& f : fields_) {
+    if (!f.report) continue;
+    nlohmann::json* node = &out;
+    std::string rest = f.key;
+    for (auto dot = rest.find('.'); dot != std::string::npos; dot = rest.find('.')) {
+      node = &(*node)[rest.substr(0, dot)];
+      rest = rest.substr(dot + 1);
+    }
+    (*node)[f.unit.empty() ? rest : rest + "_" + unit_suffix(f.unit)] = f.value();
+  }
+  return out;
+}
+
 std::string ConfigSchema::markdown() const {
   std::string out = fmt::format("## `packlab {}`\n\n", command_);
   if (!summary_.empty()) out += summary_ + "\n\n";
-  out += "| key | type | default | description |\n|---|---|---|---|\n";
-  for (const Key& k : keys_) {
-    std::string description = k.description;
+  if (!python_function_.empty())
+    out += fmt::format(
+        "Flags: `--` and the key with `-` for `.` and `_`; Python: `packlab.{}(...)` with the key "
+        "with `_` for `.` as keyword (settings marked *command line* excepted).\n\n",
+        python_function_);
+  out += "| key | type | default | unit | allowed | description |\n|---|---|---|---|---|---|\n";
+  for (const Field& f : fields_) {
+    std::string description = f.description;
+    if (!f.aliases.empty()) {
+      std::string names;
+      for (const std::string& a : f.aliases) names += (names.empty() ? "" : ", ") + snake_to_flag(a);
+      description += " (also " + names + ")";
+    }
+    if (!python_function_.empty() && !f.python) description += " *command line*";
     std::replace(description.begin(), description.end(), '|', '/');
-    out += fmt::format("| `{}` | {} | `{}` | {} |\n", k.key, k.type, k.default_text, description);
+    out += fmt::format("| `{}` | {} | `{}` | {} | {} | {} |\n", f.key, f.type, f.default_text, f.unit,
+                       f.range ? f.range->text() : "", description);
   }
   return out + "\n";
+}
+
+std::string ConfigSchema::python_doc() const {
+  std::string out;
+  for (const Field& f : fields_) {
+    if (!f.python) continue;
+    std::string names;
+    for (const std::string& k : f.keywords()) names += (names.empty() ? "" : " or ") + k;
+    out += fmt::format("  {} ({}, default {}{}{}): {}\n", names, f.type, f.default_text,
+                       f.unit.empty() ? "" : " " + f.unit, f.range ? ", " + f.range->text(f.unit) : "", f.description);
+  }
+  return out;
 }
 
 }  // namespace packlab::io

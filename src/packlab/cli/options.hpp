@@ -1,0 +1,85 @@
+// The command-line flags of an option set (io/config.hpp): one flag per field, named after its
+// key (`relax.max_steps`: --relax-max-steps, plus one per alias), with the field's default,
+// unit and description in --help. Flags are read as text and applied after the config file,
+// so every command has the same precedence: default < config file < flag.
+#pragma once
+
+#include <CLI/CLI.hpp>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "packlab/io/config.hpp"
+
+namespace packlab::cli {
+
+class OptionFlags {
+ public:
+  // Adds the flags of `schema` to `cmd`; the schema's targets must outlive the parse.
+  OptionFlags(CLI::App* cmd, io::ConfigSchema schema) : schema_(std::move(schema)) {
+    values_.resize(schema_.fields().size());
+    lists_.resize(schema_.fields().size());
+    switches_ = std::make_unique<bool[]>(schema_.fields().size());
+    for (std::size_t i = 0; i < schema_.fields().size(); ++i) {
+      const io::ConfigSchema::Field& f = schema_.fields()[i];
+      std::string names;
+      for (const std::string& n : f.flags()) names += (names.empty() ? "" : ",") + n;
+      std::string help = f.description;
+      if (f.range)
+        help += "; " + f.range->text(f.unit);
+      else if (!f.unit.empty())
+        help += " [" + f.unit + "]";
+      if (f.type == "boolean") {  // --name sets it, --name=false clears it
+        options_.push_back(cmd->add_flag(names, switches_[i], help + " (default " + f.default_text + ")"));
+        continue;
+      }
+      if (f.type == "numbers") {  // 1,0.5 or 1 0.5
+        options_.push_back(
+            cmd->add_option(names, lists_[i], help)->delimiter(',')->type_name("LIST")->default_str(f.default_text));
+        continue;
+      }
+      CLI::Option* o = cmd->add_option(names, values_[i], help);
+      o->type_name(f.type == "number" ? "FLOAT" : f.type == "integer" ? "INT" : "TEXT");
+      o->default_str(f.type == "string" ? f.default_text.substr(1, f.default_text.size() - 2) : f.default_text);
+      options_.push_back(o);
+    }
+  }
+
+  // Writes the flags given on the command line into the schema's targets.
+  void apply() const {
+    for (std::size_t i = 0; i < options_.size(); ++i)
+      if (options_[i]->count() > 0) {
+        const io::ConfigSchema::Field& f = schema_.fields()[i];
+        if (f.type == "boolean") {
+          io::ConfigSchema::set(f, switches_[i], f.flag());
+        } else if (f.type == "numbers") {
+          std::string text;
+          for (const std::string& item : lists_[i]) text += (text.empty() ? "" : ",") + item;
+          io::ConfigSchema::set_text(f, text, f.flag());
+        } else {
+          io::ConfigSchema::set_text(f, values_[i], f.flag());
+        }
+      }
+  }
+  // The first flag of the set that was given, or "" (e.g. to refuse it with --resume).
+  std::string first_given(const std::vector<std::string>& except = {}) const {
+    for (std::size_t i = 0; i < options_.size(); ++i) {
+      if (options_[i]->count() == 0) continue;
+      const std::string name = schema_.fields()[i].flag();
+      bool skip = false;
+      for (const std::string& e : except) skip = skip || schema_.find(e) == &schema_.fields()[i];
+      if (!skip) return name;
+    }
+    return "";
+  }
+  const io::ConfigSchema& schema() const { return schema_; }
+
+ private:
+  io::ConfigSchema schema_;
+  std::vector<std::string> values_;              // the text of each option
+  std::vector<std::vector<std::string>> lists_;  // the items of each list option
+  std::unique_ptr<bool[]> switches_;             // the boolean fields' flags
+  std::vector<CLI::Option*> options_;
+};
+
+}  // namespace packlab::cli

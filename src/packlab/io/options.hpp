@@ -1,0 +1,163 @@
+// The option sets of the commands, declared once (io/config.hpp): each binds the fields of a
+// parameter struct to their keys, units, ranges and documentation. The command line (flags and
+// config file), the Python module (keywords) and the generated reference read these, so a
+// command and its Python function take the same options under the same names.
+#pragma once
+
+#include <array>
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "packlab/core/box.hpp"
+#include "packlab/dem/engine.hpp"
+#include "packlab/dem/material.hpp"
+#include "packlab/dem/relax.hpp"
+#include "packlab/generate/fba.hpp"
+#include "packlab/generate/lattice.hpp"
+#include "packlab/generate/ls.hpp"
+#include "packlab/generate/opal.hpp"
+#include "packlab/generate/random.hpp"
+#include "packlab/generate/scrm.hpp"
+#include "packlab/generate/shake.hpp"
+#include "packlab/generate/vem.hpp"
+#include "packlab/io/config.hpp"
+
+namespace packlab::io {
+
+// The keys of one particle material under `section` (normal_stiffness, shear_stiffness,
+// density, damping, friction), as the linear contact law with local damping reads them.
+void add_linear_material(ConfigSchema& schema, const std::string& section, dem::Material& material);
+
+// `packlab generate lattice` / packlab.generate_lattice: a cubic lattice in a matching box.
+struct LatticeOptions {
+  std::string type = generate::lattice_type_name(generate::LatticeParams{}.type);
+  std::vector<double> cells = per_axis(generate::LatticeParams{}.cells);
+  generate::LatticeParams lattice;         // radius and gap
+  generate::LatticeParams params() const;  // validated
+  template <class T>
+  static std::vector<double> per_axis(const std::array<T, 3>& a) {
+    return {static_cast<double>(a[0]), static_cast<double>(a[1]), static_cast<double>(a[2])};
+  }
+};
+ConfigSchema lattice_options(LatticeOptions& o);
+
+// `packlab generate random` / packlab.generate_random: random spheres, overlapping or not.
+struct RandomOptions {
+  generate::RandomPackingParams random;  // particles, radius, volume fraction
+  bool no_overlap = !generate::RandomPackingParams{}.allow_overlap;
+  std::vector<double> periodic = LatticeOptions::per_axis(generate::RandomPackingParams{}.periodic);
+  std::vector<double> aspect = LatticeOptions::per_axis(generate::RandomPackingParams{}.aspect);
+  std::uint64_t seed = 1;
+  generate::RandomPackingParams params() const;  // validated
+};
+ConfigSchema random_options(RandomOptions& o);
+
+// The engine's options with one material for every particle type: packlab.Engine and the
+// engine part of `packlab relax`. The material's keys are all of dem::material_parameters();
+// the engine checks those its contact law reads (a law's unused properties may stay outside
+// their range, e.g. youngs_modulus = 0 for the linear law).
+struct EngineSettings {
+  dem::EngineConfig engine;  // engine.types[0]: the material
+  std::string stiffness_rule = dem::stiffness_rule_name(dem::EngineConfig{}.stiffness_rule);
+  std::string time_step_rule = dem::time_step_rule_name(dem::EngineConfig{}.time_step_rule);
+
+  dem::EngineConfig config() const;  // engine with the two rules
+};
+void add_engine_options(ConfigSchema& schema, EngineSettings& s);
+ConfigSchema engine_options(EngineSettings& s);  // the keywords of packlab.Engine
+
+// `packlab relax` / packlab.relax: the engine's options and the relaxation's.
+struct RelaxRun : EngineSettings {
+  dem::RelaxOptions relax;
+  std::uint64_t seed = 1;  // accepted for uniformity; relax draws no random numbers
+};
+ConfigSchema relax_options(RelaxRun& r);
+
+// `packlab generate vem` / packlab.generate_vem: the void expansion method.
+ConfigSchema vem_options(generate::VemParams& p);
+
+// An LS start from random points: `packlab generate ls` / packlab.generate_ls, and the LS part
+// of `packlab generate scrm` / packlab.generate_scrm.
+struct LsOptions {
+  double phi = 0.0;  // target volume fraction; 0 = grow until jammed
+  long particles = 2000;
+  std::vector<double> sizes{1.0};  // relative diameters of the size classes
+  std::vector<double> number_fractions, volume_fractions;
+  double radius = 0.5;  // of the largest class at the target [m]
+  generate::LsParams ls;
+  std::uint64_t seed = 1;
+  generate::SizeClasses classes() const;
+};
+ConfigSchema ls_options(LsOptions& o);
+
+// `packlab generate scrm` / packlab.generate_scrm: LS growth to phi alternated with shaking.
+struct ScrmOptions : LsOptions {
+  ScrmOptions() { phi = 0.6; }  // SCRM grows to a target
+  generate::ShakeParams shake;
+  long blocks_per_cycle = 5;            // LS blocks between shakes
+  long shakes_per_cycle = 1;            // global shakes after each LS segment
+  long final_shakes = 10;               // global shakes at the target
+  generate::ScrmParams params() const;  // validated
+};
+ConfigSchema scrm_options(ScrmOptions& o);
+
+// `packlab generate fba` / packlab.generate_fba: the force-biased algorithm. Give particles (the
+// box follows from diameter, porosity and aspect) or box (the count follows).
+struct FbaOptions {
+  long particles = 0;
+  std::vector<double> box;              // LX, LY, LZ [m]
+  std::vector<double> aspect{1, 1, 1};  // box edge ratios with particles
+  double diameter = 1.0;                // of the largest size class [m]
+  std::vector<double> sizes{1.0}, number_fractions, volume_fractions;
+  std::string periodic = "xyz";
+  generate::FbaParams fba;
+  long history_every = 10;  // iterations between two rows of the convergence history
+  std::uint64_t seed = 1;
+
+  // The box and the sphere count the options describe (InputError for a contradiction).
+  struct Setup {
+    Box box;
+    long count = 0;
+    generate::SizeClasses classes;
+  };
+  Setup setup() const;
+};
+ConfigSchema fba_options(FbaOptions& o);
+
+// `packlab build opal` / packlab.build_opal: an inverse-opal model from a particle packing.
+struct OpalBuildOptions {
+  std::string pores = "fcc";        // fcc (lattice) | random (force-biased pore packing)
+  double pore_diameter = 0.0;       // D [m]; or pore_ratio
+  double pore_ratio = 0.0;          // D / mean particle diameter
+  std::string orientation = "111";  // FCC direction along z
+  double pore_spacing = 1.0;        // FCC nearest-neighbour pore distance / D
+  std::vector<double> pore_origin;  // a pore lattice point X, Y, Z [m]; empty: automatic
+  long pore_count = 0;              // random pores: their number; or pore_fraction
+  double pore_fraction = 0.0;
+  generate::OpalOptions opal;
+  std::uint64_t seed = 1;
+
+  // The builder's options for `packing` with its pore set (the FCC lattice, or random pores
+  // drawn with `seed`); `pores_report`, if given, receives the report's `pores` block.
+  generate::OpalOptions resolve(const Packing& packing, nlohmann::json* pores_report = nullptr) const;
+};
+ConfigSchema opal_build_options(OpalBuildOptions& o);
+
+// `packlab shake` / packlab.shake: Monte-Carlo shaking of a packing.
+struct ShakeOptions {
+  long sweeps = 10;  // global shakes M
+  generate::ShakeParams shake;
+  std::uint64_t seed = 1;
+};
+ConfigSchema shake_options(ShakeOptions& o);
+
+// `packlab bond` / packlab.bond: bonds between close pairs (generate/bonding.hpp).
+struct BondOptions {
+  std::string model = "contact";  // contact | elastic
+  double eps = 0.01;
+  double cutoff_ratio = 1.75;
+  int threads = 1;
+};
+ConfigSchema bond_options(BondOptions& o);
+
+}  // namespace packlab::io
