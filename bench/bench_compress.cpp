@@ -1,4 +1,4 @@
-// Compression test of an inverse opal of about 50,000 particles (bpm-inverse-opals, issue #7):
+// Compression test of an inverse opal of about 50,000 particles (bpm-inverse-opals):
 // particle-steps and bond-steps per second of the DEM engine under load (glued plate moving at
 // the automatic quasi-static rate, bonds deforming), and the memory per particle and per bond
 // (heap bytes the engine allocates, from glibc's mallinfo2: an engine with the bonds minus one
@@ -23,7 +23,8 @@
 #include "packlab/generate/fba.hpp"
 #include "packlab/generate/opal.hpp"
 #include "packlab/io/packing_io.hpp"
-#include "packlab/mechanics/compression_test.hpp"
+#include "packlab/mechanics/opal_materials.hpp"
+#include "packlab/mechanics/uniaxial_compression.hpp"
 
 using namespace packlab;
 
@@ -87,7 +88,7 @@ int main(int argc, char** argv) {
   const Packing input = file == "-" ? default_packing(threads) : io::read_packing(file);
   const Packing model = input.bonds.empty() ? make_opal(tile(input, tiles), threads) : input;
 
-  mechanics::CompressionSetup setup;
+  mechanics::UniaxialCompressionSetup setup;
   setup.options.threads = threads;
   setup.finish(model);
   dem::EngineConfig config;

@@ -1,4 +1,4 @@
-// Force-biased algorithm and inverse-opal builder (issue #7, docs/opal-build.md).
+// Force-biased algorithm and inverse-opal builder (docs/opal-build.md).
 //  1. FBA: N equal spheres (default 50,000) to porosity 0.38, periodic along x, y, walls along z
 //     (the paper's setting), tolerance 1e-3: iterations, time, particle-iterations/s, the
 //     verified max overlap.

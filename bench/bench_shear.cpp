@@ -12,7 +12,7 @@
 
 #include "packlab/generate/bonding.hpp"
 #include "packlab/io/packing_io.hpp"
-#include "packlab/mechanics/shear_test.hpp"
+#include "packlab/mechanics/oscillatory_shear.hpp"
 
 using namespace packlab;
 
@@ -27,7 +27,7 @@ int main(int argc, char** argv) {
     bo.cutoff_ratio = 1.01;
     generate::add_bonds(packing, bo);
   }
-  mechanics::ShearTestOptions o;
+  mechanics::OscillatoryShearOptions o;
   o.threads = threads;
   o.steps_per_cycle = steps_per_cycle;
   o.cycles = cycles;
@@ -38,7 +38,7 @@ int main(int argc, char** argv) {
   const double relax_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   o.relax = false;  // relaxed above; the set-up is still settled
   t0 = std::chrono::steady_clock::now();
-  const mechanics::ShearTestResult r = mechanics::run_shear_test(relaxed, o);
+  const mechanics::OscillatoryShearResult r = mechanics::run_oscillatory_shear(relaxed, o);
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   const auto& run = r.runs.at(0);
   const double n = static_cast<double>(run.structure_particles + run.plate_particles);

@@ -52,9 +52,9 @@ else
   run bench_ls 100000 3                     # 10^5 monodisperse (PackingGeneration: 555 s)
   run bench_vem 2                           # Fig. 1 case end to end on 2 threads (7-9 minutes)
 fi
-# Issue #6: one orientation of the N = 8000 shear case (doh §2.4), contact bonds.
+# Oscillatory shear: one orientation of the N = 8000 shear case (doh §2.4), contact bonds.
 run bench_shear "$ROOT/examples/shear/data/vem_ns8000_nv2000.xyz" 1 $([ "$quick" = 1 ] && echo "2000 2" || echo "10000 10")
-# Issue #7: FBA + opal builder (~49k particles, pore/particle 10), then compression of a
+# Inverse opals: FBA + opal builder (~49k particles, pore/particle 10), then compression of a
 # ~54,000-particle FCC opal: particle-steps/s, bond-steps/s, bytes per particle and per bond.
 run bench_fba 10
 if [ "$quick" = 1 ]; then run bench_compress 1 - 1 500; else run bench_compress 1; fi

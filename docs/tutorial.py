@@ -66,7 +66,7 @@ packlab.write(model, os.path.join(out, "bonded.vtu"))  # bonds are line cells in
 # 4. Test: the oscillatory shear test (§2.4) with the paper's Table 1 bond parameters, plate
 #    normal z sheared along x, quasi-static (cycle length in steps); G' = |G*| cos(delta).
 shear = packlab.shear_test(model, orientations="z:x", cycles=4 if small else 6,
-                           steps_per_cycle=2000 if small else 8000, relax_steps=5000 if small else 20000)
+                           steps_per_cycle=2000 if small else 8000, relax_max_steps=5000 if small else 20000)
 g = shear["storage_modulus"]
 print(f"G' = {g['mean'] / 1e6:.3f} MPa, phase angle {shear['phase_angle']:.4f} rad")
 samples = g["per_orientation"][0]["samples"]

@@ -17,7 +17,7 @@ echo "== packlab demo 2/3: microstructure of the structure (coordination, pore s
 echo
 echo "== packlab demo 3/3: contact bonds and the oscillatory shear test (plate normal z, both shear directions) =="
 "$P" bond "$OUT/vem/packing.xyz" --model contact --eps 0.01 --out "$OUT/bonded.vtu"
-"$P" test shear "$OUT/bonded.vtu" --orientations z --cycles 4 --steps-per-cycle 8000 --relax-steps 20000 \
+"$P" test shear "$OUT/bonded.vtu" --orientations z --cycles 4 --steps-per-cycle 8000 --relax-max-steps 20000 \
   --out "$OUT/shear"
 echo
 echo "Results:"

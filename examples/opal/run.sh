@@ -20,7 +20,7 @@ d=15e-9
 # 1. Bulk factor K_E = E_macro / E_b (eq. 20) and bulk strength from a pore-free sample.
 $PACKLAB generate fba --box 150e-9,150e-9,210e-9 --diameter $d --porosity 0.38 --periodic xy \
   --seed 1 --quiet --no-plots --out "$OUT/bulk-packing"
-$PACKLAB bond "$OUT/bulk-packing/packing.vtu" --model beam --cutoff-ratio 1.75 --quiet --out "$OUT/bulk.vtu"
+$PACKLAB bond "$OUT/bulk-packing/packing.vtu" --model elastic --cutoff-ratio 1.75 --quiet --out "$OUT/bulk.vtu"
 $PACKLAB calibrate compress "$OUT/bulk.vtu" --bulk-factor --config "$CFG" --out "$OUT/bulk"
 # The same sample with open sides (a free-standing pillar) and with eq. 16 applied to compressed
 # bonds too (the two other readings in docs/opal.md).

@@ -20,7 +20,7 @@ for nv in 125 250 500 1000 1625 2000; do
   "$B" bond "$OUT/$name/vem/packing.xyz" --model contact --eps 0.01 --out "$OUT/$name/bonded.vtu" --quiet
   # The loose structures (C ~ 4) need slower cycles to be quasi-static (docs/shear.md, "Rate").
   slow=""
-  [ "$nv" -ge 1625 ] && slow="--steps-per-cycle 40000 --cycles 4 --relax-steps 100000"
+  [ "$nv" -ge 1625 ] && slow="--steps-per-cycle 40000 --cycles 4 --relax-max-steps 100000"
   "$B" test shear "$OUT/$name/bonded.vtu" --config "$HERE/table2_small.toml" $slow --quiet --out "$OUT/$name/shear"
   python3 - "$OUT" "$name" "$nv" <<'PY'
 import json, sys

@@ -62,15 +62,15 @@ def test_generator_errors():
 
 def test_bond_models_on_fcc(tmp_path):
     # FCC shells at d, sqrt(2) d, sqrt(3) d hold 12, 6, 24 neighbours: the contact model bonds
-    # the first shell, the beam model (1.75 d) the first three.
+    # the first shell, the elastic model (1.75 d) the first three.
     p = packlab.generate_lattice(type="fcc", cells=(3, 3, 3), radius=0.5)
     contact = packlab.bond(p, model="contact", eps=0.01)
     assert len(contact.bonds) == 6 * len(p) and len(p.bonds) == 0
     assert np.allclose(contact.bonds.rest_length, 1.0)
-    beam = packlab.bond(p, model="beam", cutoff_ratio=1.75)
-    assert len(beam.bonds) == 21 * len(p)
-    packlab.write(beam, tmp_path / "beam.vtu")
-    back = packlab.read(tmp_path / "beam.vtu")
-    assert np.array_equal(back.bonds.i, beam.bonds.i) and np.array_equal(back.bonds.image, beam.bonds.image)
+    elastic = packlab.bond(p, model="elastic", cutoff_ratio=1.75)
+    assert len(elastic.bonds) == 21 * len(p)
+    packlab.write(elastic, tmp_path / "elastic.vtu")
+    back = packlab.read(tmp_path / "elastic.vtu")
+    assert np.array_equal(back.bonds.i, elastic.bonds.i) and np.array_equal(back.bonds.image, elastic.bonds.image)
     with pytest.raises(packlab.InputError, match="model = glue"):
         packlab.bond(p, model="glue")

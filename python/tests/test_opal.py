@@ -1,4 +1,4 @@
-"""packlab.generate_fba and packlab.build_opal (issue #7, docs/opal-build.md): the FBA reaches
+"""packlab.generate_fba and packlab.build_opal (docs/opal-build.md): the FBA reaches
 its porosity with overlaps below the tolerance (checked here by brute force with NumPy), the
 same seed gives the same packing, the opal model has no particle centre inside a pore (eq. 1),
 substrate = fixed, bond materials follow the bpm-inverse-opals §2.1 rules and rest lengths are

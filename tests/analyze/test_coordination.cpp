@@ -74,11 +74,10 @@ TEST(Coordination, IterativeRattlerRemovalCascades) {
 }
 
 TEST(Coordination, AnchorPackingsMatchPackingGenerationsRattlerCounts) {
-  // ../shared/data/anchor-packings/README.md: at strain 1e-7, pg-ls-mono-10k has 9,561
+  // tests/data/anchor-packings.tar.xz, README.md: at strain 1e-7, pg-ls-mono-10k has 9,561
   // non-rattlers with 5.61 mean contacts, pg-ls-bi-10k 6,460 with 5.64 (PackingGeneration's
   // own analysis). Its rattlers have fewer than 3 contacts, removed iteratively.
-  const std::filesystem::path dir = std::filesystem::path(PACKLAB_SOURCE_DIR) / "../shared/data/anchor-packings";
-  if (!std::filesystem::exists(dir / "pg-ls-mono-10k.txt")) GTEST_SKIP() << "anchor packings not found";
+  const std::filesystem::path dir = PACKLAB_ANCHOR_PACKINGS;
   struct Case {
     const char* file;
     std::size_t non_rattlers;

@@ -61,9 +61,7 @@ TEST(Fabric, ChainIsUniaxial) {
 
 TEST(Fabric, DenseRandomPackingIsNearlyIsotropic) {
   // Isotropic normals give E[a^2] = 56.25 / N_c (a_rms = 7.5/sqrt(N_c)); allow 3 a_rms.
-  const std::filesystem::path file =
-      std::filesystem::path(PACKLAB_SOURCE_DIR) / "../shared/data/anchor-packings/pg-ls-mono-10k.txt";
-  if (!std::filesystem::exists(file)) GTEST_SKIP() << "anchor packing not found";
+  const std::filesystem::path file = std::filesystem::path(PACKLAB_ANCHOR_PACKINGS) / "pg-ls-mono-10k.txt";
   Fabric fabric(1e-7);
   fabric.compute(io::read_packing(file));
   ASSERT_GT(fabric.contacts(), 20000);

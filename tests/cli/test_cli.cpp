@@ -1,4 +1,4 @@
-// The command line as a user meets it: the done-criteria of the foundation issue (FCC info),
+// The command line as a user meets it: `info` on an FCC lattice,
 // every subcommand's --help, and each error path: one line, exit code 2, nothing written.
 #include <gtest/gtest.h>
 #include <unistd.h>

@@ -137,3 +137,29 @@ TEST(NeighborList, RejectsBoxShorterThanInteractionRange) {
   NeighborList list(0.1);
   EXPECT_THROW(list.build(box, pos, rad), InputError);
 }
+
+TEST(NeighborList, CoincidentParticlesAreAnInputErrorNotAnAbort) {
+  // 10^4 spheres at one point would list 5e7 pairs (10^5 exhausted the memory inside the
+  // parallel region): the build stops early and names a crowded particle.
+  Box box;
+  box.length = {10, 10, 10};
+  std::vector<Vec3> pos(10000, Vec3{5, 5, 5});
+  std::vector<double> rad(pos.size(), 0.5);
+  for (int threads : {1, 2}) {
+    NeighborList list(0.1);
+    try {
+      list.build(box, pos, rad, threads);
+      FAIL() << "no error for coincident particles";
+    } catch (const InputError& e) {
+      EXPECT_NE(std::string(e.what()).find("coincident"), std::string::npos) << e.what();
+    }
+  }
+  // A dense but physical packing is untouched by the limit.
+  std::vector<Vec3> lattice;
+  for (int x = 0; x < 10; ++x)
+    for (int y = 0; y < 10; ++y)
+      for (int z = 0; z < 10; ++z) lattice.push_back({x + 0.5, y + 0.5, z + 0.5});
+  NeighborList list(0.1);
+  list.build(box, lattice, std::vector<double>(lattice.size(), 0.5), 2);
+  EXPECT_EQ(list.pair_count(), 3u * 10 * 10 * 10);  // periodic: three neighbours per sphere
+}

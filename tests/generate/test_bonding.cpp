@@ -42,7 +42,7 @@ TEST(Bonding, BeamCutoffOnFccReachesTheThirdShell) {
   lp.cells = {4, 4, 4};
   Packing p = make_lattice(lp);
   BondingOptions options;
-  options.cutoff_ratio = bonding_cutoff_ratio("beam", 0.01, 1.75);
+  options.cutoff_ratio = bonding_cutoff_ratio("elastic", 0.01, 1.75);
   add_bonds(p, options);
   EXPECT_EQ(p.bonds.size(), 21 * p.size());
   expect_consistent(p);
@@ -69,6 +69,6 @@ TEST(Bonding, MaterialRuleFromTypesAndNoBondMarker) {
 
 TEST(Bonding, BadModelAndCutoffAreInputErrors) {
   EXPECT_THROW(bonding_cutoff_ratio("glue", 0.01, 1.75), InputError);
-  EXPECT_THROW(bonding_cutoff_ratio("beam", 0.01, 2.5), InputError);
+  EXPECT_THROW(bonding_cutoff_ratio("elastic", 0.01, 2.5), InputError);
   EXPECT_THROW(bonding_cutoff_ratio("contact", -0.1, 1.75), InputError);
 }

@@ -13,6 +13,7 @@
 #include "packlab/core/error.hpp"
 #include "packlab/generate/lattice.hpp"
 #include "packlab/generate/ls.hpp"
+#include "packlab/generate/overlap_check.hpp"
 #include "packlab/io/packing_io.hpp"
 
 using namespace packlab;

@@ -8,6 +8,7 @@
 #include "packlab/core/error.hpp"
 #include "packlab/generate/lattice.hpp"
 #include "packlab/generate/ls.hpp"
+#include "packlab/generate/overlap_check.hpp"
 #include "packlab/generate/shake.hpp"
 
 using namespace packlab;

@@ -344,18 +344,11 @@ TEST_F(FormatsTest, ReadOptionsBoxOverridesTheFileBox) {
 // ---------------------------------------------------------------------------------------------
 // Files from other programs
 
-fs::path anchor_packing_dir() {
-  for (const fs::path& candidate :
-       {fs::path(PACKLAB_SOURCE_DIR) / ".." / "shared" / "data" / "anchor-packings",
-        fs::path(PACKLAB_SOURCE_DIR) / "shared" / "data" / "anchor-packings"})
-    if (fs::is_directory(candidate)) return candidate;
-  return {};
-}
+// tests/data/anchor-packings.tar.xz, unpacked into the build folder by CMake.
+fs::path anchor_packing_dir() { return PACKLAB_ANCHOR_PACKINGS; }
 
 TEST(AnchorPackings, ReadWithBoxAndVolumeFractionFromTheReadme) {
   const fs::path dir = anchor_packing_dir();
-  if (dir.empty())
-    GTEST_SKIP() << "shared/data/anchor-packings not found beside or inside " << PACKLAB_SOURCE_DIR;
   struct Expected {
     const char* file;
     double phi;  // README table, 6 digits
@@ -382,7 +375,6 @@ TEST(AnchorPackings, ReadWithBoxAndVolumeFractionFromTheReadme) {
 
 TEST_F(FormatsTest, AnchorPackingSurvivesEveryFormat) {
   const fs::path dir = anchor_packing_dir();
-  if (dir.empty()) GTEST_SKIP() << "shared/data/anchor-packings not found";
   const Packing original = read_packing(dir / "pg-ls-bi-10k.txt");
   for (const char* name : {"a.xyz", "a.vtu", "a.data", "a.csv", "a.txt"}) {
     SCOPED_TRACE(name);

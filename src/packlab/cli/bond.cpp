@@ -1,4 +1,4 @@
-// packlab bond IN [--config FILE.toml] --model contact|beam [--eps 0.01] [--cutoff-ratio 1.75] [--threads T]
+// packlab bond IN [--config FILE.toml] --model contact|elastic [--eps 0.01] [--cutoff-ratio 1.75] [--threads T]
 //   --out FILE.vtu
 // Turns a packing into a bonded model: a bond between every pair closer than the model's
 // cutoff, across periodic boundaries (generate/bonding.hpp). The bonds are stored in the file
@@ -31,7 +31,7 @@ void add_bond(CLI::App& app) {
   };
   auto opt = std::make_shared<Options>();
   auto* cmd = app.add_subcommand(
-      "bond", "Bond every pair closer than a cutoff (contact bonds of touching pairs, or beam bonds within 1.75 d)");
+      "bond", "Bond every pair closer than a cutoff (contact bonds of touching pairs, or elastic bonds within 1.75 d)");
   cmd->add_option("in", opt->in, "Input packing (any readable format)")->required();
   cmd->add_option("--out", opt->out, "Output bonded model (.vtu: the format that stores bonds)")->required();
   cmd->add_option("--config", opt->config, "TOML file with any of the options; flags override it");

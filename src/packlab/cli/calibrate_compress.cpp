@@ -16,21 +16,37 @@
 #include <memory>
 
 #include "packlab/cli/commands.hpp"
+#include "packlab/cli/uniaxial_compression_output.hpp"
 #include "packlab/core/error.hpp"
 #include "packlab/io/atomic_file.hpp"
 #include "packlab/io/packing_io.hpp"
 #include "packlab/io/report.hpp"
-#include "packlab/mechanics/calibration.hpp"
-#include "packlab/mechanics/compression_test.hpp"
+#include "packlab/io/table.hpp"
+#include "packlab/mechanics/compression_calibration.hpp"
 
 namespace packlab::cli {
 
-// Defined in test_compress.cpp: the flags and config keys of a compression run.
+// Defined in uniaxial_compression.cpp: the flags and config keys of a compression run.
 struct CompressFlags;
 std::shared_ptr<CompressFlags> add_compression_flags(CLI::App* cmd);
-mechanics::CompressionSetup resolve_compression_settings(CLI::App* cmd, const CompressFlags& f, const std::string& config,
+mechanics::UniaxialCompressionSetup resolve_compression_settings(CLI::App* cmd, const CompressFlags& f, const std::string& config,
                                                          const Packing& model);
-using CompressSettings = mechanics::CompressionSetup;
+using CompressSettings = mechanics::UniaxialCompressionSetup;
+
+namespace {
+
+nlohmann::json history_json(const mechanics::CalibrationResult& c) {
+  nlohmann::json history = nlohmann::json::array();
+  for (const auto& h : c.history)
+    history.push_back({{"bond_youngs_modulus", h.parameters[0]},
+                       {"bond_strength", h.parameters[1]},
+                       {"youngs_modulus", h.responses[0]},
+                       {"strength", h.responses[1]},
+                       {"finite_difference", h.finite_difference}});
+  return history;
+}
+
+}  // namespace
 
 void add_calibrate_compress(CLI::App& calibrate) {
   struct Options {
@@ -66,69 +82,42 @@ void add_calibrate_compress(CLI::App& calibrate) {
     nlohmann::json report = io::report_header("calibrate compress");
     report["input"] = opt->in;
     if (opt->bulk_factor) {
-      const mechanics::CompressionResult r = mechanics::run_compression(model, s.options);
-      mechanics::write_compression_outputs(r, s.options, dir / "final", !opt->no_plots, false);
-      const double ke = r.youngs_modulus / s.materials.silica_youngs_modulus;
+      const mechanics::BulkFactorResult b = mechanics::compression_bulk_factor(model, s);
+      const mechanics::UniaxialCompressionResult& r = b.run;
+      write_uniaxial_compression_outputs(r, s.options, dir / "final", !opt->no_plots, false);
       report["mode"] = "bulk_factor";
       report["bond_youngs_modulus"] = s.materials.silica_youngs_modulus;
       report["bond_strength"] = s.materials.silica_strength;
-      report["bulk_factor"] = ke;
-      report["strength_ratio"] = r.strength > 0 ? r.youngs_modulus / r.strength : 0.0;
-      report["strength_factor"] = r.strength / s.materials.silica_strength;
-      report["compression"] = mechanics::compression_report(r, s.options);
+      report["bulk_factor"] = b.bulk_factor;
+      report["strength_ratio"] = b.strength_ratio;
+      report["strength_factor"] = b.strength_factor;
+      report["compression"] = uniaxial_compression_report(r, s.options);
       report["youngs_modulus"] = r.youngs_modulus;
       report["strength"] = r.strength;
       io::write_report(dir / "report.json", report);
       if (!opt->quiet)
         fmt::print("E_macro = {:.5g} GPa, K_E = E_macro / E_b = {:.4f}, strength {:.5g} MPa = E_macro / {:.2f} "
                    "({:.3f} x sigma_max)\n",
-                   r.youngs_modulus * 1e-9, ke, r.strength * 1e-6, r.strength > 0 ? r.youngs_modulus / r.strength : 0.0,
-                   r.strength / s.materials.silica_strength);
+                   r.youngs_modulus * 1e-9, b.bulk_factor, r.strength * 1e-6, b.strength_ratio, b.strength_factor);
       return;
     }
     require(opt->target_e > 0.0, "--target-youngs-modulus", opt->target_e, "> 0 Pa (or use --bulk-factor)");
     require(opt->target_strength > 0.0, "--target-strength", opt->target_strength, "> 0 Pa");
     opt->calibration.diagonal = !opt->full_jacobian;
-    std::vector<std::pair<std::vector<double>, mechanics::CompressionResult>> runs;
-    int count = 0;
-    auto response = [&](const std::vector<double>& p) {
-      CompressSettings run = s;
-      run.materials.silica_youngs_modulus = p[0];
-      run.materials.silica_strength = p[1];
-      run.options.types = mechanics::opal_particle_types(run.materials);
-      run.options.bond_materials = mechanics::opal_bond_materials(run.materials);
-      mechanics::CompressionResult r = mechanics::run_compression(model, run.options);
-      ++count;
+    auto on_run = [&](int run, const std::vector<double>& p, const mechanics::UniaxialCompressionResult& r) {
       if (!opt->quiet)
         fmt::print("run {}: E_b = {:.6g} GPa, sigma_max = {:.6g} MPa -> E = {:.6g} GPa, strength = {:.6g} MPa ({:.1f} s)\n",
-                   count, p[0] * 1e-9, p[1] * 1e-6, r.youngs_modulus * 1e-9, r.strength * 1e-6, r.seconds);
+                   run, p[0] * 1e-9, p[1] * 1e-6, r.youngs_modulus * 1e-9, r.strength * 1e-6, r.seconds);
       std::fflush(stdout);
-      std::vector<double> out{r.youngs_modulus, r.strength};
-      runs.emplace_back(p, std::move(r));
-      return out;
     };
-    const mechanics::CalibrationResult c = mechanics::calibrate(
-        response, {s.materials.silica_youngs_modulus, s.materials.silica_strength}, {opt->target_e, opt->target_strength},
-        opt->calibration);
-    std::string csv = "evaluation,finite_difference,bond_youngs_modulus,bond_strength,youngs_modulus,strength\n";
-    nlohmann::json history = nlohmann::json::array();
-    for (std::size_t k = 0; k < c.history.size(); ++k) {
-      const auto& h = c.history[k];
-      csv += fmt::format("{},{},{:.17g},{:.17g},{:.17g},{:.17g}\n", k, h.finite_difference ? 1 : 0, h.parameters[0],
-                         h.parameters[1], h.responses[0], h.responses[1]);
-      history.push_back({{"bond_youngs_modulus", h.parameters[0]},
-                         {"bond_strength", h.parameters[1]},
-                         {"youngs_modulus", h.responses[0]},
-                         {"strength", h.responses[1]},
-                         {"finite_difference", h.finite_difference}});
-    }
+    const mechanics::CompressionCalibrationResult result =
+        mechanics::calibrate_compression(model, s, opt->target_e, opt->target_strength, opt->calibration, on_run);
+    const mechanics::CalibrationResult& c = result.calibration;
+    const Columns history = mechanics::calibration_history_columns(c);
     std::filesystem::create_directories(dir);
-    io::write_text_atomically(dir / "calibration.csv", csv);
-    for (auto it = runs.rbegin(); it != runs.rend(); ++it)
-      if (it->first == c.parameters) {
-        mechanics::write_compression_outputs(it->second, s.options, dir / "final", !opt->no_plots, false);
-        break;
-      }
+    io::write_text_atomically(dir / "calibration.csv", io::to_csv(history));
+    if (result.has_final)
+      write_uniaxial_compression_outputs(result.final, s.options, dir / "final", !opt->no_plots, false);
     report["mode"] = "calibrate";
     report["targets"] = {{"youngs_modulus", opt->target_e}, {"strength", opt->target_strength}};
     report["tolerance"] = opt->calibration.tolerance;
@@ -140,7 +129,7 @@ void add_calibrate_compress(CLI::App& calibrate) {
     report["bond_strength"] = c.parameters[1];
     report["youngs_modulus"] = c.responses[0];
     report["strength"] = c.responses[1];
-    report["history"] = history;
+    report["history"] = history_json(c);
     io::write_report(dir / "report.json", report);
     if (!opt->quiet)
       fmt::print("{}: E_b = {:.6g} GPa, sigma_max = {:.6g} MPa give E = {:.6g} GPa, strength = {:.6g} MPa\n", c.reason(),

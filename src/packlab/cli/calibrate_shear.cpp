@@ -17,14 +17,14 @@
 #include "packlab/io/config.hpp"
 #include "packlab/io/packing_io.hpp"
 #include "packlab/io/report.hpp"
-#include "packlab/mechanics/shear_test.hpp"
+#include "packlab/mechanics/shear_calibration.hpp"
 
 namespace packlab::cli {
 
-// Defined in test_shear.cpp (the flags and config keys both shear commands share).
-std::function<void(mechanics::ShearTestOptions&, std::string&, bool&)> add_shear_flags(CLI::App* cmd,
+// Defined in oscillatory_shear.cpp (the flags and config keys both shear commands share).
+std::function<void(mechanics::OscillatoryShearOptions&, std::string&, bool&)> add_shear_flags(CLI::App* cmd,
                                                                                        const std::string& command);
-nlohmann::json shear_parameters_json(const mechanics::ShearTestOptions& t, const std::string& orientations);
+nlohmann::json shear_parameters_json(const mechanics::OscillatoryShearOptions& t, const std::string& orientations);
 
 void add_calibrate_shear(CLI::App& calibrate) {
   struct Options {
@@ -45,7 +45,7 @@ void add_calibrate_shear(CLI::App& calibrate) {
   auto apply = add_shear_flags(cmd, "calibrate shear");
   cmd->add_flag("--quiet", opt->quiet, "No progress output");
   cmd->callback([opt, apply] {
-    mechanics::ShearTestOptions options;
+    mechanics::OscillatoryShearOptions options;
     std::string orientations;
     bool plots = true;
     apply(options, orientations, plots);

@@ -15,6 +15,7 @@
 #include "packlab/core/error.hpp"
 #include "packlab/core/progress.hpp"
 #include "packlab/generate/ls.hpp"
+#include "packlab/generate/overlap_check.hpp"
 #include "packlab/io/atomic_file.hpp"
 #include "packlab/io/packing_io.hpp"
 #include "packlab/io/plot.hpp"

@@ -11,6 +11,7 @@
 #include "packlab/cli/commands.hpp"
 #include "packlab/cli/scrm_common.hpp"
 #include "packlab/core/progress.hpp"
+#include "packlab/generate/overlap_check.hpp"
 #include "packlab/generate/scrm.hpp"
 #include "packlab/io/atomic_file.hpp"
 #include "packlab/io/report.hpp"

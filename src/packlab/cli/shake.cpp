@@ -12,6 +12,7 @@
 #include "packlab/cli/scrm_common.hpp"
 #include "packlab/core/error.hpp"
 #include "packlab/core/progress.hpp"
+#include "packlab/generate/overlap_check.hpp"
 #include "packlab/generate/shake.hpp"
 #include "packlab/io/atomic_file.hpp"
 #include "packlab/io/options.hpp"

@@ -115,6 +115,11 @@ void NeighborList::build(const Box& box, std::vector<Vec3>& position, const std:
   thread_image_.resize(threads);
   first_.assign(n + 1, 0);
   std::vector<int> counts(n, 0);
+  // Coincident or deeply overlapping particles would list up to n^2 pairs (memory exhausted,
+  // an exception inside the parallel region, an abort): stop once a thread's chunk holds more
+  // than max_pairs_per_particle pairs per particle on average, and report the worst particle.
+  constexpr long max_pairs_per_particle = 2000;
+  int crowded_particle = -1;
 
 #pragma omp parallel num_threads(threads)
   {
@@ -137,7 +142,13 @@ void NeighborList::build(const Box& box, std::vector<Vec3>& position, const std:
     const int* __restrict cell_of = particle_cell_.data();
     const std::array<Vec3, 27> offsets = offsets_;
     const double skin = skin_ + reach_;  // listing range beyond touching
+    const std::size_t pair_limit = static_cast<std::size_t>(max_pairs_per_particle * (end - begin + 1));
     for (int i = begin; i < end; ++i) {
+      if (tp.size() > pair_limit) {
+#pragma omp critical(packlab_neighbor_crowded)
+        if (crowded_particle < 0 || i - 1 < crowded_particle) crowded_particle = i - 1;
+        break;
+      }
       const Vec3 pi = position[i];
       const double ri = radius[i];
       const double ri_skin = ri + skin;
@@ -211,6 +222,14 @@ void NeighborList::build(const Box& box, std::vector<Vec3>& position, const std:
       }
       counts[i] = static_cast<int>(count);
     }
+  }
+  if (crowded_particle >= 0) {
+    first_.clear();  // no half-built list survives
+    fail_input(fmt::format(
+        "neighbour search: more than {} particles within interaction range of each particle on average "
+        "(particle {} at ({:g}, {:g}, {:g}) has {} partners): coincident or heavily overlapping particles",
+        max_pairs_per_particle, crowded_particle, position[crowded_particle].x, position[crowded_particle].y,
+        position[crowded_particle].z, counts[crowded_particle]));
   }
   for (int i = 0; i < n; ++i) first_[i + 1] = first_[i] + counts[i];
   partner_.clear();

@@ -7,16 +7,16 @@
 
 namespace packlab::generate {
 
-double bonding_cutoff_ratio(const std::string& model, double eps, double beam_cutoff) {
+double bonding_cutoff_ratio(const std::string& model, double eps, double elastic_cutoff) {
   if (model == "contact") {
     require(eps >= 0.0 && eps < 1.0, "eps", eps, "in [0, 1)");
     return 1.0 + eps;
   }
-  if (model == "beam") {
-    require(beam_cutoff >= 1.0 && beam_cutoff < 2.0, "cutoff_ratio", beam_cutoff, "in [1, 2)");
-    return beam_cutoff;
+  if (model == "elastic") {
+    require(elastic_cutoff >= 1.0 && elastic_cutoff < 2.0, "cutoff_ratio", elastic_cutoff, "in [1, 2)");
+    return elastic_cutoff;
   }
-  fail_input("model = " + model + ": must be contact or beam");
+  fail_input("model = " + model + ": must be contact or elastic");
 }
 
 void add_bonds(Packing& packing, const BondingOptions& options) {

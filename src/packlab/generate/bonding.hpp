@@ -3,7 +3,8 @@
 // the initial (rest) length stored so every later stage reads them from the file.
 //   contact model (doh-elastic-properties §2.1): cutoff_ratio = 1 + eps, eps = 0.01, i.e. the
 //     pairs that touch within the coordination tolerance;
-//   beam model (bpm-inverse-opals §2.1): cutoff 1.75 d for equal particles, cutoff_ratio 1.75.
+//   elastic model (the elastic beam bonds of bpm-inverse-opals §2.1, bond law "elastic"): cutoff
+//     1.75 d for equal particles, cutoff_ratio 1.75.
 // The material of each bond comes from its two particles' types (a rule callback; default 0).
 #pragma once
 
@@ -23,9 +24,10 @@ struct BondingOptions {
   int threads = 1;
 };
 
-// Cutoff ratio of the named model: "contact" -> 1 + eps, "beam" -> cutoff (InputError for an
+// Cutoff ratio of the named model (named like the bond laws of dem/bond/): "contact" ->
+// 1 + eps, "elastic" -> elastic_cutoff (InputError for an
 // unknown model naming the allowed ones).
-double bonding_cutoff_ratio(const std::string& model, double eps, double beam_cutoff);
+double bonding_cutoff_ratio(const std::string& model, double eps, double elastic_cutoff);
 
 // Replaces packing.bonds by the bonds of `options` (each pair once, i < j, or i == j for a
 // particle bonded to its own periodic image). Deterministic and ordered by (i, j).

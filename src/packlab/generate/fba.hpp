@@ -34,7 +34,7 @@
 
 #include "packlab/core/packing.hpp"
 #include "packlab/core/random.hpp"
-#include "packlab/generate/ls.hpp"  // SizeClasses
+#include "packlab/generate/size_classes.hpp"
 
 namespace packlab::generate {
 

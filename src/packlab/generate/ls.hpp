@@ -49,26 +49,9 @@
 
 #include "packlab/core/packing.hpp"
 #include "packlab/core/random.hpp"
+#include "packlab/generate/size_classes.hpp"
 
 namespace packlab::generate {
-
-// Size classes of a polydisperse packing: relative diameters and their number or volume
-// fractions. One class by default.
-struct SizeClasses {
-  std::vector<double> sizes{1.0};  // relative diameters (any common scale)
-  std::vector<double> fractions;   // one per class; empty = equal numbers
-  bool volume_fractions = false;   // fractions are volume fractions (else number fractions)
-
-  void validate() const;  // InputError naming the key
-  // Number fraction of each class.
-  std::vector<double> number_fractions() const;
-  // Particles per class for n in total (largest-remainder rounding, sums to n).
-  std::vector<long> counts(long n) const;
-
-  // From the front ends' options: number or volume fractions (at most one given), validated.
-  static SizeClasses from_options(const std::vector<double>& sizes, const std::vector<double>& number_fractions,
-                                  const std::vector<double>& volume_fractions);
-};
 
 struct LsParams {
   double growth_rate = 0.01;             // G = ds/dt (see above); 0 = no growth (equilibration)
@@ -213,9 +196,5 @@ struct LsStart {
 };
 LsStart make_ls_start(long particles, const SizeClasses& classes, double radius, double volume_fraction,
                       Random& rng);
-
-// Smallest d_ij / (r_i + r_j) over all pairs (periodic images included), by the core
-// neighbour list: the independent overlap check. 1 when no pair is within contact range.
-double min_contact_ratio(const Packing& packing);
 
 }  // namespace packlab::generate

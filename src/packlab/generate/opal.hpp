@@ -1,4 +1,4 @@
-// Inverse-opal builder (bpm-inverse-opals §2.1, §4; issue #7 item 2): from a packing of primary
+// Inverse-opal builder (bpm-inverse-opals §2.1, §4): from a packing of primary
 // particles and a set of spherical pores, a bonded-particle model of a (coated) inverse opal on
 // a fixed substrate.
 //

@@ -9,7 +9,7 @@
 #include <numeric>
 
 #include "packlab/core/error.hpp"
-#include "packlab/generate/ls.hpp"
+#include "packlab/generate/overlap_check.hpp"
 
 namespace packlab::generate {
 

@@ -435,12 +435,12 @@ ConfigSchema bond_options(BondOptions& o) {
   ConfigSchema schema("bond", "Bonds between every pair closer than a cutoff (docs/opal-build.md).", "bond");
   schema
       .text("model", o.model,
-            "contact: pairs with d < (1 + eps)(r_i + r_j) (PFC contact bonds, doh-elastic-properties §2.1); beam: "
+            "contact: pairs with d < (1 + eps)(r_i + r_j) (PFC contact bonds, doh-elastic-properties §2.1); elastic: "
             "pairs with d < cutoff_ratio (r_i + r_j) (elastic beam bonds, bpm-inverse-opals §2.1)")
       .number("eps", o.eps, "Contact tolerance of the contact model")
       .range({0.0, 1.0, false, true})
       .number("cutoff_ratio", o.cutoff_ratio,
-              "Beam model: bond pairs closer than this times r_i + r_j (1.75 d for equal spheres)")
+              "Elastic model: bond pairs closer than this times r_i + r_j (1.75 d for equal spheres)")
       .range({1.0, 2.0, false, true})
       .integer("threads", o.threads, "Threads of the pair search");
   return schema;

@@ -125,6 +125,10 @@ void check_field_names(const Packing& packing, const std::filesystem::path& path
 // validate() with the file named in the message.
 void finish_reading(Packing& packing, const std::optional<Box>& file_box, const ReadOptions& options,
                     const std::filesystem::path& path);
+// LAMMPS readers: `order` = atom indices sorted by id (LAMMPS writes atoms in processor order);
+// InputError naming `path` on a repeated id.
+void sort_by_id(std::vector<std::size_t>& order, const std::vector<long long>& ids,
+                const std::filesystem::path& path);
 
 }  // namespace detail
 

@@ -1,6 +1,6 @@
-// Uniaxial compression (mechanics/compression_test): a lattice column of beam bonds against its
-// closed-form modulus, rate independence on a disordered sample, the Young's modulus fit on
-// synthetic curves, per-type stress statistics.
+// Uniaxial compression (mechanics/uniaxial_compression): a lattice column of elastic bonds against its
+// closed-form modulus, rate independence on a disordered sample, bad options. The modulus fit
+// and the per-type stress statistics: tests/analyze/test_stress_strain.cpp.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -12,7 +12,8 @@
 #include "packlab/generate/bonding.hpp"
 #include "packlab/generate/fba.hpp"
 #include "packlab/generate/lattice.hpp"
-#include "packlab/mechanics/compression_test.hpp"
+#include "packlab/mechanics/opal_materials.hpp"
+#include "packlab/mechanics/uniaxial_compression.hpp"
 
 using namespace packlab;
 using namespace packlab::mechanics;
@@ -23,19 +24,19 @@ constexpr double inf = std::numeric_limits<double>::infinity();
 constexpr double r = 7.5e-9;  // the paper's 15 nm particles
 constexpr double E = 6.53e9, nu = 0.17;
 
-CompressionOptions options(double strength = inf) {
+UniaxialCompressionOptions options(double strength = inf) {
   OpalMaterials m;
   m.silica_youngs_modulus = E;
   m.silica_poisson_ratio = nu;
   m.silica_strength = strength;
-  CompressionOptions o;
+  UniaxialCompressionOptions o;
   o.types = opal_particle_types(m);
   o.bond_materials = opal_bond_materials(m);
   o.threads = 1;
   return o;
 }
 
-// Simple cubic column, 3 x 3 cells across (periodic), `layers` levels, beam bonds 1.75 d.
+// Simple cubic column, 3 x 3 cells across (periodic), `layers` levels, elastic bonds 1.75 d.
 Packing sc_column(int layers) {
   generate::LatticeParams lp;
   lp.type = generate::LatticeType::sc;
@@ -61,16 +62,16 @@ double sc_modulus() {
   return std::numbers::pi / 4 * (E + std::sqrt(2.0) * (E + G) + 4 * (E + 2 * G) / (3 * std::sqrt(3.0)));
 }
 
-TEST(Compression, GluedPlateOnASimpleCubicColumnGivesTheClosedFormModulus) {
+TEST(UniaxialCompression, GluedPlateOnASimpleCubicColumnGivesTheClosedFormModulus) {
   // Two fixed substrate levels, two glued levels moving with the plate: the gauge length is the
   // five gaps between them and the measured modulus is M itself. (At 1e6 1/s the start-up
   // waves of the plate are damped out before the linear fit; at 2e6 1/s they add 0.4 %.)
   const int layers = 8;
-  CompressionOptions o = options();
+  UniaxialCompressionOptions o = options();
   o.max_strain = 0.003;
   o.strain_rate = 1e6;
   o.samples = 50;
-  const CompressionResult res = run_compression(sc_column(layers), o);
+  const UniaxialCompressionResult res = run_uniaxial_compression(sc_column(layers), o);
   EXPECT_EQ(res.fixed_particles, 18u);
   EXPECT_EQ(res.glued_particles, 18u);
   EXPECT_EQ(res.broken_bonds, 0u);
@@ -78,28 +79,28 @@ TEST(Compression, GluedPlateOnASimpleCubicColumnGivesTheClosedFormModulus) {
   EXPECT_NEAR(res.area, 9 * 4 * r * r, 1e-9 * r * r);
   ASSERT_TRUE(res.modulus.found);
   EXPECT_NEAR(res.youngs_modulus, sc_modulus(), 2e-3 * sc_modulus());
-  const CompressionPoint& last = res.curve.back();
+  const UniaxialCompressionPoint& last = res.curve.back();
   EXPECT_NEAR(last.stress, sc_modulus() * last.strain, 2e-3 * last.stress);
   EXPECT_LT(res.max_kinetic_ratio, 0.01);  // quasi-static
 }
 
-TEST(Compression, ContactPlateAddsTheHertzCompliance) {
+TEST(UniaxialCompression, ContactPlateAddsTheHertzCompliance) {
   // The paper's plate: a Hertz contact on each top particle carrying f = sigma d^2,
   // delta_H = (3 f / (4 E* sqrt r))^(2/3), E* = E / (2 (1 - nu^2)), in series with the N - 2
   // deforming gaps above the two fixed levels: plate displacement = delta_H + (N - 2) sigma d / M.
   const int layers = 8;
-  CompressionOptions o = options();
+  UniaxialCompressionOptions o = options();
   o.plate = "contact";
   o.max_strain = 0.003;
   o.strain_rate = 2e6;
   o.samples = 50;
-  const CompressionResult res = run_compression(sc_column(layers), o);
+  const UniaxialCompressionResult res = run_uniaxial_compression(sc_column(layers), o);
   const double d = 2 * r, M = sc_modulus();
   const double e_star = E / (2 * (1 - nu * nu));
   ASSERT_GT(res.curve.size(), 10u);
   EXPECT_NEAR(res.height, layers * d, 1e-9 * d);
   for (std::size_t k : {res.curve.size() / 2, res.curve.size() - 1}) {
-    const CompressionPoint& p = res.curve[k];
+    const UniaxialCompressionPoint& p = res.curve[k];
     ASSERT_GT(p.stress, 0.0);
     const double f = p.stress * d * d;
     const double hertz = std::pow(3 * f / (4 * e_star * std::sqrt(r)), 2.0 / 3.0);
@@ -117,9 +118,9 @@ TEST(Compression, ContactPlateAddsTheHertzCompliance) {
   EXPECT_LT(res.youngs_modulus, 1.01 * tangent(peak));
 }
 
-TEST(Compression, HalvingTheStrainRateChangesNeitherModulusNorStrength) {
+TEST(UniaxialCompression, HalvingTheStrainRateChangesNeitherModulusNorStrength) {
   // A pore-free force-biased packing (porosity 0.38, the paper's bulk sample; 400 particles,
-  // periodic x, y), beam bonds 1.75 d, breakable silica bonds, compressed past its peak at the
+  // periodic x, y), elastic bonds 1.75 d, breakable silica bonds, compressed past its peak at the
   // automatic rate (1e-4 strain per elastic-wave transit, the command line's default) and at
   // half that: E within 0.2 %, strength within 5 %.
   const double d = 2 * r;
@@ -136,78 +137,30 @@ TEST(Compression, HalvingTheStrainRateChangesNeitherModulusNorStrength) {
   generate::BondingOptions bo;
   bo.cutoff_ratio = 1.75;
   generate::add_bonds(p, bo);
-  CompressionSetup setup;
+  UniaxialCompressionSetup setup;
   setup.options.threads = 1;
   setup.options.max_strain = 0.05;
   setup.options.samples = 300;
   setup.finish(p);
   const double rate = setup.options.strain_rate;
-  const CompressionResult fast = run_compression(p, setup.options);
+  const UniaxialCompressionResult fast = run_uniaxial_compression(p, setup.options);
   setup.options.strain_rate = 0.5 * rate;
-  const CompressionResult slow = run_compression(p, setup.options);
+  const UniaxialCompressionResult slow = run_uniaxial_compression(p, setup.options);
   ASSERT_GT(fast.broken_bonds, 0u);
   ASSERT_TRUE(fast.modulus.found && slow.modulus.found);
   EXPECT_NEAR(fast.youngs_modulus, slow.youngs_modulus, 2e-3 * slow.youngs_modulus);
   EXPECT_NEAR(fast.strength, slow.strength, 0.05 * slow.strength);
 }
 
-TEST(Compression, ModulusFitRecoversTheSlopeOfTheLinearPart) {
-  // Toe (quadratic contact formation up to strain 0.004), linear with slope 1.7 GPa, softening
-  // past strain 0.02, a peak and a drop: the max-tangent fit returns the linear slope.
-  const double slope = 1.7e9, toe = 0.004;
-  std::vector<double> strain, stress;
-  for (int k = 0; k <= 400; ++k) {
-    const double e = 0.03 * k / 400.0;
-    double s;
-    if (e < toe)
-      s = 0.5 * slope * e * e / toe;
-    else if (e < 0.02)
-      s = 0.5 * slope * toe + slope * (e - toe);
-    else
-      s = 0.5 * slope * toe + slope * (0.02 - toe) + slope * (e - 0.02) - 0.5 * slope * (e - 0.02) * (e - 0.02) / 0.004;
-    if (e > 0.026) s *= std::exp(-(e - 0.026) / 0.001);
-    strain.push_back(e);
-    stress.push_back(s);
-  }
-  const ModulusFit fit = fit_youngs_modulus(strain, stress);
-  ASSERT_TRUE(fit.found);
-  EXPECT_NEAR(fit.youngs_modulus, slope, 1e-3 * slope);
-  EXPECT_GE(fit.strain_begin, toe - 1e-12);
-  EXPECT_LE(fit.strain_end, 0.02 + 1e-12);
-  EXPECT_GT(fit.r2, 0.9999);
-}
-
-TEST(Compression, StressByTypeAveragesFreeParticlesPerType) {
-  Packing p;
-  p.box.length = {1, 1, 1};
-  for (int k = 0; k < 4; ++k) p.add({0.1 + 0.2 * k, 0.5, 0.5}, 0.05, k < 3 ? particle_type::structural : particle_type::coating);
-  p.fixed = {1, 0, 0, 0};
-  std::vector<std::array<double, 9>> s(4, std::array<double, 9>{});
-  const double xx[] = {100, 1, 3, 7}, zz[] = {100, -4, -8, -2};
-  for (int k = 0; k < 4; ++k) {
-    s[static_cast<std::size_t>(k)][0] = xx[k];
-    s[static_cast<std::size_t>(k)][8] = zz[k];
-  }
-  const auto t = stress_by_type(p, s);
-  ASSERT_EQ(t.size(), 2u);
-  EXPECT_EQ(t[0].type, particle_type::structural);
-  EXPECT_EQ(t[0].particles, 2u);  // the fixed one is left out
-  EXPECT_DOUBLE_EQ(t[0].mean[0], 2.0);
-  EXPECT_DOUBLE_EQ(t[0].mean[2], -6.0);
-  EXPECT_NEAR(t[0].sd[2], std::sqrt(8.0), 1e-12);
-  EXPECT_EQ(t[1].type, particle_type::coating);
-  EXPECT_DOUBLE_EQ(t[1].mean[0], 7.0);
-}
-
-TEST(Compression, BadOptionsAreInputErrors) {
+TEST(UniaxialCompression, BadOptionsAreInputErrors) {
   const Packing column = sc_column(4);
-  CompressionOptions o = options();
+  UniaxialCompressionOptions o = options();
   o.sides = "closed";
-  EXPECT_THROW(run_compression(column, o), InputError);
+  EXPECT_THROW(run_uniaxial_compression(column, o), InputError);
   o = options();
   o.strain_rate = -1;
-  EXPECT_THROW(run_compression(column, o), InputError);
+  EXPECT_THROW(run_uniaxial_compression(column, o), InputError);
   Packing unbonded = column;
   unbonded.bonds = Bonds{};
-  EXPECT_THROW(run_compression(unbonded, options()), InputError);
+  EXPECT_THROW(run_uniaxial_compression(unbonded, options()), InputError);
 }

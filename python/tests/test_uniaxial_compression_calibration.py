@@ -18,7 +18,7 @@ TEST = dict(strain_rate=2e7, max_strain=0.15, stop_drop=0.8, samples=300)
 def sample():
     fba = packlab.generate_fba(particles=120, diameter=15e-9, porosity=0.38, periodic="xy", aspect=(1, 1, 1.5),
                                seed=3)
-    return packlab.bond(fba.packing, model="beam", cutoff_ratio=1.75)
+    return packlab.bond(fba.packing, model="elastic", cutoff_ratio=1.75)
 
 
 def test_newton_recovers_the_bond_values_of_the_targets(sample):
@@ -38,7 +38,7 @@ def test_newton_recovers_the_bond_values_of_the_targets(sample):
     assert h["bond_youngs_modulus"][0] == 6.53e9 and h["bond_strength"][0] == 94.3e6  # the paper's values first
     assert h["finite_difference"].dtype == bool and h["finite_difference"].any()
     final = r["final"]
-    assert isinstance(final, packlab.CompressionResult)
+    assert isinstance(final, packlab.UniaxialCompressionResult)
     assert final.youngs_modulus == r["youngs_modulus"] and final.strength == r["strength"]
 
 

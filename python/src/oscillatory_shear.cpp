@@ -1,4 +1,4 @@
-// packlab.bond, packlab.shear_test, packlab.calibrate_shear (issue #6): bonded models and the
+// packlab.bond, packlab.shear_test, packlab.calibrate_shear: bonded models and the
 // oscillatory shear test of doh-elastic-properties §2.4 with keywords named like the options of
 // `packlab bond` and `packlab test shear`. The runs release the GIL; the optional progress
 // callback is called (throttled) with the GIL held.
@@ -6,22 +6,24 @@
 
 #include <cmath>
 
+#include "columns.hpp"
 #include "common.hpp"
 #include "packlab/generate/bonding.hpp"
-#include "packlab/mechanics/shear_test.hpp"
+#include "packlab/mechanics/oscillatory_shear.hpp"
+#include "packlab/mechanics/shear_calibration.hpp"
 
 namespace packlab::python {
 
 namespace {
 
-using mechanics::ShearTestOptions;
+using mechanics::OscillatoryShearOptions;
 
-ShearTestOptions make_options(double normal_stiffness, double shear_stiffness, double normal_strength,
+OscillatoryShearOptions make_options(double normal_stiffness, double shear_stiffness, double normal_strength,
                               double shear_strength, double friction, double damping, double density,
                               const std::string& stiffness_rule, int cycles, double amplitude, long steps_per_cycle,
                               int samples_per_cycle, int plate_layers, int regions, const std::string& orientations,
-                              bool relax, long relax_steps, int threads) {
-  ShearTestOptions o;
+                              bool relax, long relax_max_steps, int threads) {
+  OscillatoryShearOptions o;
   o.normal_stiffness = normal_stiffness;
   o.shear_stiffness = shear_stiffness;
   o.normal_strength = normal_strength;
@@ -38,40 +40,13 @@ ShearTestOptions make_options(double normal_stiffness, double shear_stiffness, d
   o.regions = regions;
   o.orientations = mechanics::shear_orientations(orientations);
   o.relax = o.settle = relax;
-  o.relax_options.max_steps = relax_steps;
+  o.relax_options.max_steps = relax_max_steps;
   o.threads = threads;
   mechanics::validate(o);
   return o;
 }
 
-py::dict samples_columns(const mechanics::ShearRun& run) {
-  std::vector<long> cycle, step;
-  std::vector<double> time, phase, strain, stress, plate, kinetic, strain_energy;
-  for (const auto& s : run.samples) {
-    cycle.push_back(s.cycle);
-    step.push_back(s.step);
-    time.push_back(s.time);
-    phase.push_back(s.phase);
-    strain.push_back(s.strain);
-    stress.push_back(s.stress);
-    plate.push_back(s.plate_stress);
-    kinetic.push_back(s.kinetic_energy);
-    strain_energy.push_back(s.strain_energy);
-  }
-  py::dict d;
-  d["cycle"] = to_numpy(std::move(cycle));
-  d["step"] = to_numpy(std::move(step));
-  d["time"] = to_numpy(std::move(time));
-  d["phase"] = to_numpy(std::move(phase));
-  d["strain"] = to_numpy(std::move(strain));
-  d["stress"] = to_numpy(std::move(stress));
-  d["plate_stress"] = to_numpy(std::move(plate));
-  d["kinetic_energy"] = to_numpy(std::move(kinetic));
-  d["strain_energy"] = to_numpy(std::move(strain_energy));
-  return d;
-}
-
-py::dict result_dict(const mechanics::ShearTestResult& r) {
+py::dict result_dict(const mechanics::OscillatoryShearResult& r, int regions) {
   py::list per;
   for (const auto& run : r.runs) {
     py::dict d;
@@ -94,7 +69,8 @@ py::dict result_dict(const mechanics::ShearTestResult& r) {
     }
     d["cycle_storage_modulus"] = to_numpy(std::move(g));
     d["cycle_phase_angle"] = to_numpy(std::move(delta));
-    d["samples"] = samples_columns(run);
+    d["samples"] = columns_dict(mechanics::shear_sample_columns(run.samples, static_cast<int>(regions)));
+    d["cycles"] = columns_dict(mechanics::shear_cycle_columns(run.cycles));
     per.append(d);
   }
   py::dict sm;
@@ -115,38 +91,39 @@ py::dict result_dict(const mechanics::ShearTestResult& r) {
 
 }  // namespace
 
-void bind_shear(py::module_& m) {
+void bind_oscillatory_shear(py::module_& m) {
   m.def(
       "shear_test",
       [](const Packing& packing, double normal_stiffness, double shear_stiffness, double normal_strength,
          double shear_strength, double friction, double damping, double density, const std::string& stiffness_rule,
          int cycles, double amplitude, long steps_per_cycle, int samples_per_cycle, int plate_layers, int regions,
-         const std::string& orientations, bool relax, long relax_steps, int threads, py::object progress,
+         const std::string& orientations, bool relax, long relax_max_steps, int threads, py::object progress,
          double progress_interval) {
-        ShearTestOptions o = make_options(normal_stiffness, shear_stiffness, normal_strength, shear_strength, friction,
+        OscillatoryShearOptions o = make_options(normal_stiffness, shear_stiffness, normal_strength, shear_strength, friction,
                                           damping, density, stiffness_rule, cycles, amplitude, steps_per_cycle,
-                                          samples_per_cycle, plate_layers, regions, orientations, relax, relax_steps,
+                                          samples_per_cycle, plate_layers, regions, orientations, relax, relax_max_steps,
                                           threads);
         ProgressCallback callback(progress, progress_interval);
         o.progress = [&](const std::string& stage, long done, long total) { callback.tick(false, stage, done, total); };
-        mechanics::ShearTestResult r;
+        mechanics::OscillatoryShearResult r;
         {
           py::gil_scoped_release nogil;
-          r = mechanics::run_shear_test(packing, o);
+          r = mechanics::run_oscillatory_shear(packing, o);
         }
-        return result_dict(r);
+        return result_dict(r, regions);
       },
       py::arg("packing"), py::kw_only(), py::arg("normal_stiffness") = 100.0, py::arg("shear_stiffness") = 10.0,
       py::arg("normal_strength") = 1e-4, py::arg("shear_strength") = 1e-6, py::arg("friction") = 0.0,
       py::arg("damping") = 0.9, py::arg("density") = 3690.0, py::arg("stiffness_rule") = "particle",
       py::arg("cycles") = 10, py::arg("amplitude") = 1e-3, py::arg("steps_per_cycle") = 20000,
       py::arg("samples_per_cycle") = 40, py::arg("plate_layers") = 3, py::arg("regions") = 3,
-      py::arg("orientations") = "all", py::arg("relax") = true, py::arg("relax_steps") = 100000,
+      py::arg("orientations") = "all", py::arg("relax") = true, py::arg("relax_max_steps") = 100000,
       py::arg("threads") = 1, py::arg("progress") = py::none(), py::arg("progress_interval") = 0.5, R"doc(
 `packlab test shear` from Python: the oscillatory shear test of a bonded periodic packing
 (doh-elastic-properties §2.4). Returns a dict: storage_modulus {mean, std, per_orientation: [{orientation,
 storage_modulus, complex_modulus, phase_angle, plate_storage_modulus, broken_bonds, cycle_storage_modulus,
-cycle_phase_angle, samples: {cycle, step, time, phase, strain, stress, plate_stress, ...}}]} [Pa],
+cycle_phase_angle, samples: {cycle, step, time, phase, strain, stress, plate_stress, region_k, ...},
+cycles: {cycle, strain_amplitude, ..., storage_modulus, ...}}]} [Pa],
 phase_angle [rad], packing (the relaxed structure), seconds. Keywords as the command-line options;
 stiffnesses [N/m] are particle stiffnesses under stiffness_rule "particle" (contacts and bonds act with k/2).
 progress(stage, done, total) is called with the GIL held at most every progress_interval seconds.
@@ -157,7 +134,7 @@ progress(stage, done, total) is called with the GIL held at most every progress_
       [](const Packing& packing, double target, double normal_stiffness, double shear_stiffness, double damping,
          double density, const std::string& stiffness_rule, int cycles, double amplitude, long steps_per_cycle,
          const std::string& orientations, double tolerance, int threads) {
-        ShearTestOptions o = make_options(normal_stiffness, shear_stiffness, 1e-4, 1e-6, 0.0, damping, density,
+        OscillatoryShearOptions o = make_options(normal_stiffness, shear_stiffness, 1e-4, 1e-6, 0.0, damping, density,
                                           stiffness_rule, cycles, amplitude, steps_per_cycle, 40, 3, 3, orientations,
                                           true, 100000, threads);
         mechanics::ShearCalibrationResult r;

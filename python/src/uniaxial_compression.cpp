@@ -1,57 +1,35 @@
 // packlab.compress / packlab.calibrate_compress / packlab.fit_porosity_law: the uniaxial
-// compression test of a bonded model (mechanics/compression_test.hpp), its calibration
-// (mechanics/calibration.hpp, eq. 18-20) and the porosity laws (analyze/porosity_laws.hpp) from Python.
+// compression test of a bonded model (mechanics/uniaxial_compression.hpp), its calibration
+// (mechanics/compression_calibration.hpp, eq. 18-20) and the porosity laws (analyze/porosity_laws.hpp) from Python.
 #include <fmt/format.h>
 
 #include <cstdint>
 #include <utility>
 
+#include "columns.hpp"
 #include "common.hpp"
 #include "packlab/analyze/porosity_laws.hpp"
 #include "packlab/core/error.hpp"
 #include "packlab/core/packing.hpp"
-#include "packlab/mechanics/calibration.hpp"
-#include "packlab/mechanics/compression_test.hpp"
+#include "packlab/mechanics/compression_calibration.hpp"
+#include "packlab/mechanics/opal_materials.hpp"
+#include "packlab/mechanics/uniaxial_compression.hpp"
 
 namespace packlab::python {
 
 namespace {
 
-py::dict curve_columns(const std::vector<mechanics::CompressionPoint>& curve) {
-  std::vector<double> time, displacement, strain, force, stress, kinetic, strain_energy, broken;
-  for (const auto& p : curve) {
-    time.push_back(p.time);
-    displacement.push_back(p.displacement);
-    strain.push_back(p.strain);
-    force.push_back(p.force);
-    stress.push_back(p.stress);
-    kinetic.push_back(p.kinetic_energy);
-    strain_energy.push_back(p.strain_energy);
-    broken.push_back(static_cast<double>(p.broken_bonds));
-  }
-  py::dict d;
-  d["time"] = to_numpy(std::move(time));
-  d["displacement"] = to_numpy(std::move(displacement));
-  d["strain"] = to_numpy(std::move(strain));
-  d["force"] = to_numpy(std::move(force));
-  d["stress"] = to_numpy(std::move(stress));
-  d["kinetic_energy"] = to_numpy(std::move(kinetic));
-  d["strain_energy"] = to_numpy(std::move(strain_energy));
-  d["broken_bonds"] = to_numpy(std::move(broken));
-  return d;
-}
-
 // The keywords shared by packlab.compress and packlab.calibrate_compress (the flags of
-// `packlab test compress`), as the command line resolves them: CompressionSetup::finish fixes
+// `packlab test compress`), as the command line resolves them: UniaxialCompressionSetup::finish fixes
 // the automatic strain rate from the starting bond modulus.
-mechanics::CompressionSetup make_setup(const Packing& model, double bond_youngs_modulus, double bond_poisson,
+mechanics::UniaxialCompressionSetup make_setup(const Packing& model, double bond_youngs_modulus, double bond_poisson,
                                        double bond_strength, double density, double titania_youngs_modulus,
                                        double titania_poisson, double titania_strength, double strain_rate,
                                        double quasi_static, double max_strain, double stop_drop,
                                        const std::string& sides, double substrate_layers, double damping,
                                        double time_step, long samples, std::vector<double> snapshot_strains,
                                        int threads) {
-  mechanics::CompressionSetup s;
+  mechanics::UniaxialCompressionSetup s;
   s.materials.silica_youngs_modulus = bond_youngs_modulus;
   s.materials.silica_poisson_ratio = bond_poisson;
   s.materials.silica_strength = bond_strength;
@@ -74,53 +52,34 @@ mechanics::CompressionSetup make_setup(const Packing& model, double bond_youngs_
   return s;
 }
 
-py::dict calibration_dict(const mechanics::CalibrationResult& c) {
-  std::vector<double> e_b, sigma, e, strength;
-  std::vector<std::uint8_t> fd;
-  for (const auto& h : c.history) {
-    e_b.push_back(h.parameters[0]);
-    sigma.push_back(h.parameters[1]);
-    e.push_back(h.responses[0]);
-    strength.push_back(h.responses[1]);
-    fd.push_back(h.finite_difference ? 1 : 0);
-  }
-  py::dict history;
-  history["bond_youngs_modulus"] = to_numpy(std::move(e_b));
-  history["bond_strength"] = to_numpy(std::move(sigma));
-  history["youngs_modulus"] = to_numpy(std::move(e));
-  history["strength"] = to_numpy(std::move(strength));
-  history["finite_difference"] = to_numpy_bool(std::move(fd));
-  return history;
-}
-
 }  // namespace
 
-void bind_compress(py::module_& m) {
-  using mechanics::CompressionResult;
-  py::class_<CompressionResult>(m, "CompressionResult", "Result of packlab.compress (SI units).")
-      .def_readonly("youngs_modulus", &CompressionResult::youngs_modulus, "Young's modulus (max-tangent fit) [Pa]")
-      .def_readonly("strength", &CompressionResult::strength, "Peak stress [Pa]")
-      .def_readonly("strain_at_peak", &CompressionResult::strain_at_peak)
-      .def_readonly("broken_bonds", &CompressionResult::broken_bonds)
-      .def_readonly("height", &CompressionResult::height, "H0 [m]")
-      .def_readonly("area", &CompressionResult::area, "Cross-section [m^2]")
-      .def_readonly("time_step", &CompressionResult::time_step, "[s]")
-      .def_readonly("steps", &CompressionResult::steps)
-      .def_readonly("bonds", &CompressionResult::bonds)
-      .def_readonly("fixed_particles", &CompressionResult::fixed_particles)
-      .def_readonly("max_kinetic_ratio", &CompressionResult::max_kinetic_ratio)
-      .def_readonly("stop_reason", &CompressionResult::stop_reason)
-      .def_readonly("model", &CompressionResult::model, "The model after the test (bond states)")
-      .def_readonly("seconds", &CompressionResult::seconds)
+void bind_uniaxial_compression(py::module_& m) {
+  using mechanics::UniaxialCompressionResult;
+  py::class_<UniaxialCompressionResult>(m, "UniaxialCompressionResult", "Result of packlab.compress (SI units).")
+      .def_readonly("youngs_modulus", &UniaxialCompressionResult::youngs_modulus, "Young's modulus (max-tangent fit) [Pa]")
+      .def_readonly("strength", &UniaxialCompressionResult::strength, "Peak stress [Pa]")
+      .def_readonly("strain_at_peak", &UniaxialCompressionResult::strain_at_peak)
+      .def_readonly("broken_bonds", &UniaxialCompressionResult::broken_bonds)
+      .def_readonly("height", &UniaxialCompressionResult::height, "H0 [m]")
+      .def_readonly("area", &UniaxialCompressionResult::area, "Cross-section [m^2]")
+      .def_readonly("time_step", &UniaxialCompressionResult::time_step, "[s]")
+      .def_readonly("steps", &UniaxialCompressionResult::steps)
+      .def_readonly("bonds", &UniaxialCompressionResult::bonds)
+      .def_readonly("fixed_particles", &UniaxialCompressionResult::fixed_particles)
+      .def_readonly("max_kinetic_ratio", &UniaxialCompressionResult::max_kinetic_ratio)
+      .def_readonly("stop_reason", &UniaxialCompressionResult::stop_reason)
+      .def_readonly("model", &UniaxialCompressionResult::model, "The model after the test (bond states)")
+      .def_readonly("seconds", &UniaxialCompressionResult::seconds)
       .def_property_readonly(
-          "fit_window", [](const CompressionResult& r) { return std::make_pair(r.modulus.strain_begin, r.modulus.strain_end); },
+          "fit_window", [](const UniaxialCompressionResult& r) { return std::make_pair(r.modulus.strain_begin, r.modulus.strain_end); },
           "Strain range of the modulus fit")
       .def_property_readonly(
-          "curve", [](const CompressionResult& r) { return curve_columns(r.curve); },
-          "Columns of curve.csv as a dict of arrays: time, displacement, strain, force, stress, ...")
+          "curve", [](const UniaxialCompressionResult& r) { return columns_dict(mechanics::curve_columns(r.curve)); },
+          "Columns of curve.csv as a dict of arrays: step, time, displacement, strain, force, stress, ...")
       .def_property_readonly(
           "breaks",
-          [](const CompressionResult& r) {
+          [](const UniaxialCompressionResult& r) {
             std::vector<double> time;
             std::vector<Vec3> position;
             std::vector<long> bond;
@@ -138,7 +97,7 @@ void bind_compress(py::module_& m) {
           "Bond failures: bond index into model.bonds, time [s], position (midpoint) [m]")
       .def_property_readonly(
           "snapshots",
-          [](const CompressionResult& r) {
+          [](const UniaxialCompressionResult& r) {
             py::list out;
             for (const auto& s : r.snapshots) {
               py::dict d;
@@ -150,7 +109,7 @@ void bind_compress(py::module_& m) {
               py::array stress = to_numpy(std::move(flat));
               d["particle_stress"] = stress.attr("reshape")(py::make_tuple(static_cast<py::ssize_t>(s.particle_stress.size()), 3, 3));
               py::list types;
-              for (const auto& t : mechanics::stress_by_type(r.model, s.particle_stress))
+              for (const auto& t : analyze::stress_by_type(r.model, s.particle_stress))
                 types.append(py::dict(py::arg("type") = t.type, py::arg("particles") = t.particles,
                                       py::arg("mean") = t.mean, py::arg("sd") = t.sd));
               d["stress_by_type"] = types;
@@ -159,8 +118,8 @@ void bind_compress(py::module_& m) {
             return out;
           },
           "Snapshots at snapshot_strains: strain, stress, bond_strain, particle_stress (N x 3 x 3), stress_by_type")
-      .def("__repr__", [](const CompressionResult& r) {
-        return fmt::format("<CompressionResult: E = {:.4g} Pa, strength = {:.4g} Pa, {} broken bonds>", r.youngs_modulus,
+      .def("__repr__", [](const UniaxialCompressionResult& r) {
+        return fmt::format("<UniaxialCompressionResult: E = {:.4g} Pa, strength = {:.4g} Pa, {} broken bonds>", r.youngs_modulus,
                            r.strength, r.broken_bonds);
       });
 
@@ -171,15 +130,15 @@ void bind_compress(py::module_& m) {
          double quasi_static, double max_strain, double stop_drop, const std::string& sides, double substrate_layers,
          double damping, double time_step, long samples, std::vector<double> snapshot_strains, int threads,
          py::object progress, double progress_interval) {
-        mechanics::CompressionSetup s =
+        mechanics::UniaxialCompressionSetup s =
             make_setup(model, bond_youngs_modulus, bond_poisson, bond_strength, density, titania_youngs_modulus,
                        titania_poisson, titania_strength, strain_rate, quasi_static, max_strain, stop_drop, sides,
                        substrate_layers, damping, time_step, samples, std::move(snapshot_strains), threads);
         ProgressCallback callback(progress, progress_interval);
         if (!progress.is_none())
-          s.options.on_point = [&](const mechanics::CompressionPoint& p) { callback.tick(false, p.strain, p.stress); };
+          s.options.on_point = [&](const mechanics::UniaxialCompressionPoint& p) { callback.tick(false, p.strain, p.stress); };
         py::gil_scoped_release nogil;
-        return mechanics::run_compression(model, s.options);
+        return mechanics::run_uniaxial_compression(model, s.options);
       },
       py::arg("model"), py::kw_only(), py::arg("bond_youngs_modulus") = 6.53e9, py::arg("bond_poisson") = 0.17,
       py::arg("bond_strength") = 94.3e6, py::arg("density") = 1297.0, py::arg("titania_youngs_modulus") = 17.89e9,
@@ -192,7 +151,7 @@ void bind_compress(py::module_& m) {
 model.bonds, e.g. from packlab.add_bonds or a .vtu of `packlab bond` / `packlab build opal`) by
 a plate moving down at strain_rate [1/s] (0 = automatic: quasi_static strain per elastic-wave
 transit). Silica = bond material 0 (and particle types structural/substrate), titania = bond
-material 1 (coating particles). Returns a CompressionResult (youngs_modulus, strength [Pa],
+material 1 (coating particles). Returns a UniaxialCompressionResult (youngs_modulus, strength [Pa],
 curve, snapshots, breaks, model). The GIL is released while it runs; progress(strain, stress)
 is called at most every progress_interval seconds.
 )doc");
@@ -205,60 +164,44 @@ is called at most every progress_interval seconds.
          double titania_poisson, double titania_strength, double strain_rate, double quasi_static, double max_strain,
          double stop_drop, const std::string& sides, double substrate_layers, double damping, double time_step,
          long samples, int threads, py::object progress) {
-        mechanics::CompressionSetup s =
+        mechanics::UniaxialCompressionSetup s =
             make_setup(model, bond_youngs_modulus, bond_poisson, bond_strength, density, titania_youngs_modulus,
                        titania_poisson, titania_strength, strain_rate, quasi_static, max_strain, stop_drop, sides,
                        substrate_layers, damping, time_step, samples, {}, threads);
         py::dict d;
         if (bulk_factor) {
-          mechanics::CompressionResult r;
+          mechanics::BulkFactorResult b;
           {
             py::gil_scoped_release nogil;
-            r = mechanics::run_compression(model, s.options);
+            b = mechanics::compression_bulk_factor(model, s);
           }
           d["mode"] = "bulk_factor";
           d["bond_youngs_modulus"] = s.materials.silica_youngs_modulus;
           d["bond_strength"] = s.materials.silica_strength;
-          d["bulk_factor"] = r.youngs_modulus / s.materials.silica_youngs_modulus;
-          d["strength_ratio"] = r.strength > 0 ? r.youngs_modulus / r.strength : 0.0;
-          d["strength_factor"] = r.strength / s.materials.silica_strength;
-          d["youngs_modulus"] = r.youngs_modulus;
-          d["strength"] = r.strength;
-          d["final"] = py::cast(std::move(r));
+          d["bulk_factor"] = b.bulk_factor;
+          d["strength_ratio"] = b.strength_ratio;
+          d["strength_factor"] = b.strength_factor;
+          d["youngs_modulus"] = b.run.youngs_modulus;
+          d["strength"] = b.run.strength;
+          d["final"] = py::cast(std::move(b.run));
           return d;
         }
-        require(target_youngs_modulus > 0.0, "target_youngs_modulus", target_youngs_modulus,
-                "> 0 Pa (or use bulk_factor=True)");
-        require(target_strength > 0.0, "target_strength", target_strength, "> 0 Pa");
         mechanics::CalibrationOptions o;
         o.tolerance = tolerance;
         o.max_iterations = max_iterations;
         o.relative_step = relative_step;
         o.diagonal = !full_jacobian;
-        // As `packlab calibrate compress`: each evaluation changes the silica bonds' E_b and
-        // sigma_max (= tau_max) only; the strain rate stays the one of the starting values.
-        std::vector<std::pair<std::vector<double>, mechanics::CompressionResult>> runs;
-        auto response = [&](const std::vector<double>& p) {
-          mechanics::CompressionSetup run = s;
-          run.materials.silica_youngs_modulus = p[0];
-          run.materials.silica_strength = p[1];
-          run.options.types = mechanics::opal_particle_types(run.materials);
-          run.options.bond_materials = mechanics::opal_bond_materials(run.materials);
-          mechanics::CompressionResult r = mechanics::run_compression(model, run.options);
-          if (!progress.is_none()) {
-            py::gil_scoped_acquire gil;
-            progress(static_cast<int>(runs.size()) + 1, p[0], p[1], r.youngs_modulus, r.strength);
-          }
-          std::vector<double> out{r.youngs_modulus, r.strength};
-          runs.emplace_back(p, std::move(r));
-          return out;
+        auto on_run = [&](int run, const std::vector<double>& p, const mechanics::UniaxialCompressionResult& r) {
+          if (progress.is_none()) return;
+          py::gil_scoped_acquire gil;
+          progress(run, p[0], p[1], r.youngs_modulus, r.strength);
         };
-        mechanics::CalibrationResult c;
+        mechanics::CompressionCalibrationResult result;
         {
           py::gil_scoped_release nogil;
-          c = mechanics::calibrate(response, {s.materials.silica_youngs_modulus, s.materials.silica_strength},
-                                   {target_youngs_modulus, target_strength}, o);
+          result = mechanics::calibrate_compression(model, s, target_youngs_modulus, target_strength, o, on_run);
         }
+        const mechanics::CalibrationResult& c = result.calibration;
         d["mode"] = "calibrate";
         d["converged"] = c.converged;
         d["reason"] = c.reason();
@@ -268,13 +211,8 @@ is called at most every progress_interval seconds.
         d["bond_strength"] = c.parameters[1];
         d["youngs_modulus"] = c.responses[0];
         d["strength"] = c.responses[1];
-        d["history"] = calibration_dict(c);
-        d["final"] = py::none();
-        for (auto it = runs.rbegin(); it != runs.rend(); ++it)
-          if (it->first == c.parameters) {
-            d["final"] = py::cast(std::move(it->second));
-            break;
-          }
+        d["history"] = columns_dict(mechanics::calibration_history_columns(c));
+        d["final"] = result.has_final ? py::cast(std::move(result.final)) : py::object(py::none());
         return d;
       },
       py::arg("model"), py::kw_only(), py::arg("target_youngs_modulus") = 0.0, py::arg("target_strength") = 0.0,
@@ -294,9 +232,9 @@ tolerance (relative); the paper's diagonal scheme unless full_jacobian. With bul
 (a pore-free sample): one test, K_E = E_macro / E_b. The other keywords are those of
 packlab.compress (the automatic strain rate is fixed by the starting E_b, as on the command line).
 Returns a dict: mode, bond_youngs_modulus, bond_strength, youngs_modulus, strength, final
-(the CompressionResult of the result's parameters); calibration: converged, reason, iterations,
+(the UniaxialCompressionResult of the result's parameters); calibration: converged, reason, iterations,
 simulations, history {bond_youngs_modulus, bond_strength, youngs_modulus, strength,
-finite_difference} (every simulation in order); bulk factor: bulk_factor, strength_ratio
+finite_difference, evaluation} (every simulation in order); bulk factor: bulk_factor, strength_ratio
 (E_macro / strength), strength_factor (strength / sigma_max). A calibration that does not
 converge returns converged=False. progress(run, E_b, sigma_max, E, strength) is called after
 each simulation.

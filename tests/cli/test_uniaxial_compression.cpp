@@ -1,5 +1,5 @@
 // packlab test compress / calibrate compress as a user meets them: a lattice bonded with
-// `packlab bond --model beam`, report.json with the SI results, the files of every curve, and
+// `packlab bond --model elastic`, report.json with the SI results, the files of every curve, and
 // bad input as one line with exit code 2.
 #include <gtest/gtest.h>
 
@@ -13,18 +13,18 @@ using packlab::test::TempDir;
 
 namespace {
 
-// A 3 x 3 x 6 simple cubic lattice of 15 nm particles with beam bonds.
+// A 3 x 3 x 6 simple cubic lattice of 15 nm particles with elastic bonds.
 std::string bonded_lattice(const TempDir& dir) {
   const std::string lattice = dir.file("sc.xyz"), model = dir.file("sc.vtu");
   EXPECT_EQ(run_packlab("generate lattice --type sc --cells 3 3 6 --radius 7.5e-9 --quiet --out " + lattice).exit_code, 0);
-  const auto b = run_packlab("bond " + lattice + " --model beam --cutoff-ratio 1.75 --out " + model);
+  const auto b = run_packlab("bond " + lattice + " --model elastic --cutoff-ratio 1.75 --out " + model);
   EXPECT_EQ(b.exit_code, 0) << b.output;
   return model;
 }
 
 }  // namespace
 
-TEST(CompressCli, LatticeReportAndCurves) {
+TEST(UniaxialCompressionCli, LatticeReportAndCurves) {
   TempDir dir("compress-cli");
   const std::string model = bonded_lattice(dir);
   const std::string out = dir.file("run");
@@ -46,7 +46,7 @@ TEST(CompressCli, LatticeReportAndCurves) {
     EXPECT_TRUE(std::filesystem::exists(out + "/" + f)) << f;
 }
 
-TEST(CompressCli, ConfigFileAndFlagsOverride) {
+TEST(UniaxialCompressionCli, ConfigFileAndFlagsOverride) {
   TempDir dir("compress-cli-config");
   const std::string model = bonded_lattice(dir);
   {
@@ -63,7 +63,7 @@ TEST(CompressCli, ConfigFileAndFlagsOverride) {
   EXPECT_EQ(report.at("broken_bonds").get<long>(), 0);
 }
 
-TEST(CompressCli, BadInputIsOneLineAndExitCode2) {
+TEST(UniaxialCompressionCli, BadInputIsOneLineAndExitCode2) {
   TempDir dir("compress-cli-bad");
   const std::string model = bonded_lattice(dir);
   for (const std::string args : {" --strain-rate -1", " --sides closed", " --max-strain 2", " --bond-poisson 0.7"}) {

@@ -32,7 +32,7 @@ double sc_modulus(double ks) { return ks * 4.0 / (9.0 * 0.5e-6); }
 
 }  // namespace
 
-TEST(ShearCli, LatticeReportHasTheStorageModulusOfTheClosedFormAndWritesEveryOutput) {
+TEST(OscillatoryShearCli, LatticeReportHasTheStorageModulusOfTheClosedFormAndWritesEveryOutput) {
   TempDir dir("shear-cli");
   const std::string model = bonded_sc(dir);
   const auto r = run_packlab("test shear " + model +
@@ -54,7 +54,7 @@ TEST(ShearCli, LatticeReportHasTheStorageModulusOfTheClosedFormAndWritesEveryOut
   EXPECT_EQ(info.exit_code, 0) << info.output;
 }
 
-TEST(ShearCli, ConfigFileIsReadAndFlagsOverrideIt) {
+TEST(OscillatoryShearCli, ConfigFileIsReadAndFlagsOverrideIt) {
   TempDir dir("shear-cli-config");
   const std::string model = bonded_sc(dir);
   {
@@ -71,7 +71,7 @@ TEST(ShearCli, ConfigFileIsReadAndFlagsOverrideIt) {
   EXPECT_NEAR(j["storage_modulus"]["mean"].get<double>(), sc_modulus(10.0), 0.01 * sc_modulus(10.0));
 }
 
-TEST(ShearCli, CalibrateFindsTheShearStiffnessRatioOfTheLattice) {
+TEST(OscillatoryShearCli, CalibrateFindsTheShearStiffnessRatioOfTheLattice) {
   // The cubic network's G' is k_s n / ((2n + 1) d) with k_s = k_n / 10: the k_n of a target
   // G' = sc_modulus(15) is 150 N/m.
   TempDir dir("shear-cli-calibrate");
@@ -87,7 +87,7 @@ TEST(ShearCli, CalibrateFindsTheShearStiffnessRatioOfTheLattice) {
   EXPECT_NEAR(j["normal_stiffness"].get<double>(), 150.0, 0.01 * 150.0);
 }
 
-TEST(ShearCli, BadInputStopsWithOneLineAndExitCode2) {
+TEST(OscillatoryShearCli, BadInputStopsWithOneLineAndExitCode2) {
   TempDir dir("shear-cli-errors");
   const std::string model = bonded_sc(dir);
   struct Case {

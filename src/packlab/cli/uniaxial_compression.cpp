@@ -1,7 +1,7 @@
 // packlab test compress IN [--config FILE.toml] --out DIR [--bond-youngs-modulus E] [--bond-poisson NU]
 //   [--bond-strength S] [--strain-rate R] [--max-strain X] [--sides periodic|open] [--substrate-layers N] ...
-// Uniaxial compression of a bonded model (mechanics/compression_test.hpp, bpm-inverse-opals):
-// any model with bonds (an opal from `packlab build opal`, or `packlab bond IN --model beam`
+// Uniaxial compression of a bonded model (mechanics/uniaxial_compression.hpp, bpm-inverse-opals):
+// any model with bonds (an opal from `packlab build opal`, or `packlab bond IN --model elastic`
 // over any packing). Writes DIR/report.json ({"youngs_modulus", "strength", "broken_bonds", ...}
 // in SI), curve.csv, bond_strain.csv, particle_stress.csv, broken_bonds.csv/.vtu, model.vtu and
 // the plots. Flags override the config file.
@@ -13,18 +13,20 @@
 #include <sstream>
 
 #include "packlab/cli/commands.hpp"
+#include "packlab/cli/uniaxial_compression_output.hpp"
 #include "packlab/core/error.hpp"
 #include "packlab/core/progress.hpp"
 #include "packlab/io/config.hpp"
 #include "packlab/io/packing_io.hpp"
 #include "packlab/io/report.hpp"
-#include "packlab/mechanics/compression_test.hpp"
+#include "packlab/mechanics/opal_materials.hpp"
+#include "packlab/mechanics/uniaxial_compression.hpp"
 
 namespace packlab::cli {
 
 // The flags and config keys of a compression run, shared with calibrate_compress.cpp (which
 // sees this type only by name).
-using CompressSettings = mechanics::CompressionSetup;
+using CompressSettings = mechanics::UniaxialCompressionSetup;
 struct CompressFlags {
   CompressSettings flags;  // what the flags parsed into
   std::vector<std::pair<std::string, std::function<void(const CompressSettings&, CompressSettings&)>>> copy;
@@ -169,11 +171,11 @@ void add_test_compress(CLI::App& test) {
     CompressSettings s = resolve_compression_settings(cmd, *opt->flags, opt->config, model);
     Progress progress("compress", 1000, !opt->quiet);
     const double max_strain = s.options.max_strain;
-    s.options.on_point = [&](const mechanics::CompressionPoint& p) {
+    s.options.on_point = [&](const mechanics::UniaxialCompressionPoint& p) {
       progress.update(static_cast<long>(1000.0 * p.strain / max_strain),
                       fmt::format("strain {:.4f}, stress {:.4g} MPa, broken {}", p.strain, p.stress * 1e-6, p.broken_bonds));
     };
-    const mechanics::CompressionResult r = mechanics::run_compression(model, s.options);
+    const mechanics::UniaxialCompressionResult r = mechanics::run_uniaxial_compression(model, s.options);
     progress.finish();
     nlohmann::json report = io::report_header("test compress");
     report["input"] = opt->in;
@@ -191,9 +193,9 @@ void add_test_compress(CLI::App& test) {
                            {"damping", s.materials.damping},
                            {"bond_radius_ratio", s.materials.bond_radius_ratio},
                            {"relaxation_time", s.materials.relaxation_time}};
-    report.update(mechanics::compression_report(r, s.options));
+    report.update(uniaxial_compression_report(r, s.options));
     const std::filesystem::path dir = opt->out;
-    mechanics::write_compression_outputs(r, s.options, dir, !opt->no_plots, !opt->no_vtu);
+    write_uniaxial_compression_outputs(r, s.options, dir, !opt->no_plots, !opt->no_vtu);
     io::write_report(dir / "report.json", report);
     if (!opt->quiet) {
       fmt::print("{} particles ({} fixed), {} bonds ({} left out), H0 = {:.4g} m, A = {:.4g} m^2\n", r.particles,

@@ -1,4 +1,4 @@
-"""packlab.bond, packlab.shear_test, packlab.calibrate_shear and the shear figures (issue #6)."""
+"""packlab.bond, packlab.shear_test, packlab.calibrate_shear and the shear figures."""
 
 import math
 

@@ -10,7 +10,8 @@
 #include "packlab/core/random.hpp"
 #include "packlab/generate/bonding.hpp"
 #include "packlab/generate/lattice.hpp"
-#include "packlab/mechanics/shear_test.hpp"
+#include "packlab/mechanics/oscillatory_shear.hpp"
+#include "packlab/mechanics/shear_calibration.hpp"
 
 using namespace packlab;
 using namespace packlab::mechanics;
@@ -42,8 +43,8 @@ Packing diluted_fcc(double keep) {
   return p;
 }
 
-ShearTestOptions quick_options(const std::string& orientations = "z:x") {
-  ShearTestOptions o;
+OscillatoryShearOptions quick_options(const std::string& orientations = "z:x") {
+  OscillatoryShearOptions o;
   o.stiffness_rule = "contact";
   o.normal_stiffness = 100.0;
   o.shear_stiffness = 10.0;
@@ -58,7 +59,7 @@ ShearTestOptions quick_options(const std::string& orientations = "z:x") {
 
 }  // namespace
 
-TEST(ShearTest, OrientationSpecs) {
+TEST(OscillatoryShear, OrientationSpecs) {
   EXPECT_EQ(shear_orientations("all").size(), 6u);
   const auto z = shear_orientations("z");
   ASSERT_EQ(z.size(), 2u);
@@ -70,12 +71,12 @@ TEST(ShearTest, OrientationSpecs) {
   EXPECT_EQ(pairs[1].direction, 2);
   EXPECT_THROW(shear_orientations("w"), InputError);
   EXPECT_THROW(shear_orientations("z:z"), InputError);
-  ShearTestOptions o;
+  OscillatoryShearOptions o;
   o.steps_per_cycle = 1001;
   EXPECT_THROW(validate(o), InputError);
 }
 
-TEST(ShearTest, EvaluateCycleRecoversModulusAndPhaseOfSyntheticSignals) {
+TEST(OscillatoryShear, EvaluateCycleRecoversModulusAndPhaseOfSyntheticSignals) {
   const double g0 = 1e-3, modulus = 2.5e6, delta = 0.1, offset = 40.0;
   std::vector<ShearSample> samples;
   for (int k = 1; k <= 40; ++k) {
@@ -96,7 +97,7 @@ TEST(ShearTest, EvaluateCycleRecoversModulusAndPhaseOfSyntheticSignals) {
   EXPECT_DOUBLE_EQ(evaluate_cycle(samples, 1).storage_modulus, 0.0);  // no samples of cycle 1
 }
 
-TEST(ShearTest, SetupHasPlatesFromThePeriodicImagesAndBondsAcrossTheBoundary) {
+TEST(OscillatoryShear, SetupHasPlatesFromThePeriodicImagesAndBondsAcrossTheBoundary) {
   const Packing sc = bonded_lattice(generate::LatticeType::sc, 4);  // 64 particles, 192 bonds
   ASSERT_EQ(sc.bonds.size(), 192u);
   const ShearSetup s = build_shear_setup(oriented_packing(sc, {2, 0}), 3, 1);
@@ -126,13 +127,13 @@ TEST(ShearTest, SetupHasPlatesFromThePeriodicImagesAndBondsAcrossTheBoundary) {
 // displacements u_{k+1} - u_k - r (theta_k + theta_{k+1}) over the n + 1 vertical bonds,
 // (n + 1) f / k_s = U - n f / k_s, so f = k_s U / (2n + 1) and, with sigma = f / d^2 and
 // gamma = U / (n d):  G = k_s n / ((2n + 1) d)  (bulk limit k_s / (2d); k_n plays no part).
-TEST(ShearTest, SimpleCubicNetworkMatchesTheSpringNetworkClosedForm) {
+TEST(OscillatoryShear, SimpleCubicNetworkMatchesTheSpringNetworkClosedForm) {
   const Packing sc = bonded_lattice(generate::LatticeType::sc, 4);
-  ShearTestOptions o = quick_options("all");
+  OscillatoryShearOptions o = quick_options("all");
   o.regions = 1;
   o.cycles = 1;
   o.steps_per_cycle = 16000;  // 4000 leaves the plate force ringing by a few per cent
-  const ShearTestResult r = run_shear_test(sc, o);
+  const OscillatoryShearResult r = run_oscillatory_shear(sc, o);
   const double d = 2.0 * r0, n = 4.0;
   const double expected = o.shear_stiffness * n / ((2.0 * n + 1.0) * d);
   ASSERT_EQ(r.runs.size(), 6u);
@@ -146,52 +147,52 @@ TEST(ShearTest, SimpleCubicNetworkMatchesTheSpringNetworkClosedForm) {
   // Under the particle rule the same numbers are particle stiffnesses: springs in series, k/2.
   o.stiffness_rule = "particle";
   o.orientations = shear_orientations("z:x");
-  const ShearTestResult half = run_shear_test(sc, o);
+  const OscillatoryShearResult half = run_oscillatory_shear(sc, o);
   EXPECT_NEAR(half.storage_modulus_mean, 0.5 * expected, 0.01 * expected);
 }
 
-TEST(ShearTest, StorageModulusIsLinearInTheStiffnessAtAFixedRatio) {
+TEST(OscillatoryShear, StorageModulusIsLinearInTheStiffnessAtAFixedRatio) {
   // Fig. 5: G' proportional to k_n at k_n / k_s = 10. Four times both stiffnesses quarters the
   // squared time step (dt halves, exactly in floating point), so the run is the same in steps,
   // every displacement the same and every force four times larger: G' x 4 to round-off.
   const Packing p = diluted_fcc(0.7);
-  ShearTestOptions o = quick_options();
+  OscillatoryShearOptions o = quick_options();
   o.cycles = 2;
-  const ShearTestResult a = run_shear_test(p, o);
+  const OscillatoryShearResult a = run_oscillatory_shear(p, o);
   o.normal_stiffness *= 4.0;
   o.shear_stiffness *= 4.0;
-  const ShearTestResult b = run_shear_test(p, o);
+  const OscillatoryShearResult b = run_oscillatory_shear(p, o);
   ASSERT_GT(a.storage_modulus_mean, 0.0);
   EXPECT_NEAR(b.storage_modulus_mean, 4.0 * a.storage_modulus_mean, 1e-12 * a.storage_modulus_mean);
   // And G' depends on k_n at fixed k_s in this non-affine network (unlike the cubic one).
   o.shear_stiffness /= 4.0;
-  const ShearTestResult c = run_shear_test(p, o);
+  const OscillatoryShearResult c = run_oscillatory_shear(p, o);
   EXPECT_GT(c.storage_modulus_mean, 1.05 * a.storage_modulus_mean);
 }
 
-TEST(ShearTest, QuasiStaticSlowerCycleGivesTheSameModulusAndNoPhaseLag) {
+TEST(OscillatoryShear, QuasiStaticSlowerCycleGivesTheSameModulusAndNoPhaseLag) {
   const Packing p = diluted_fcc(0.7);
-  ShearTestOptions o = quick_options();
+  OscillatoryShearOptions o = quick_options();
   o.cycles = 2;
-  const ShearTestResult fast = run_shear_test(p, o);
+  const OscillatoryShearResult fast = run_oscillatory_shear(p, o);
   o.steps_per_cycle *= 2;
-  const ShearTestResult slow = run_shear_test(p, o);
+  const OscillatoryShearResult slow = run_oscillatory_shear(p, o);
   EXPECT_NEAR(slow.storage_modulus_mean, fast.storage_modulus_mean, 0.01 * slow.storage_modulus_mean);
   EXPECT_LT(std::abs(slow.phase_angle_mean), 0.01);
   EXPECT_LT(slow.phase_angle_max, 0.02);
   // A cycle far too short for the structure to follow lags and reads differently.
   o.steps_per_cycle = 80;
   o.samples_per_cycle = 40;
-  const ShearTestResult rushed = run_shear_test(p, o);
+  const OscillatoryShearResult rushed = run_oscillatory_shear(p, o);
   EXPECT_GT(std::abs(rushed.phase_angle_mean), 0.05);
 }
 
-TEST(ShearTest, CalibrationFindsTheNormalStiffnessOfATargetModulus) {
+TEST(OscillatoryShear, CalibrationFindsTheNormalStiffnessOfATargetModulus) {
   const Packing p = diluted_fcc(0.7);
-  ShearTestOptions o = quick_options();
+  OscillatoryShearOptions o = quick_options();
   o.cycles = 1;
   o.normal_stiffness = 100.0;
-  const double g100 = run_shear_test(p, o).storage_modulus_mean;
+  const double g100 = run_oscillatory_shear(p, o).storage_modulus_mean;
   const double target = 1.37 * g100;  // G' linear in k_n: the answer is k_n = 137 N/m
   const ShearCalibrationResult c = calibrate_normal_stiffness(p, target, o, 0.001);
   EXPECT_TRUE(c.converged) << c.reason;
@@ -200,13 +201,13 @@ TEST(ShearTest, CalibrationFindsTheNormalStiffnessOfATargetModulus) {
   EXPECT_LE(c.evaluations, 4);
 }
 
-TEST(ShearTest, RejectsUnbondedOrNonPeriodicPackings) {
+TEST(OscillatoryShear, RejectsUnbondedOrNonPeriodicPackings) {
   Packing p = bonded_lattice(generate::LatticeType::sc, 3);
-  ShearTestOptions o = quick_options();
+  OscillatoryShearOptions o = quick_options();
   Packing open = p;
   open.box.periodic[2] = false;
-  EXPECT_THROW(run_shear_test(open, o), InputError);
+  EXPECT_THROW(run_oscillatory_shear(open, o), InputError);
   Packing unbonded = p;
   unbonded.bonds = Bonds{};
-  EXPECT_THROW(run_shear_test(unbonded, o), InputError);
+  EXPECT_THROW(run_oscillatory_shear(unbonded, o), InputError);
 }

@@ -23,6 +23,10 @@
 // quasi-statically with a cycle length in steps (`steps_per_cycle`); docs/shear.md shows that
 // G' does not change when the cycle is made slower and the phase angle stays near zero.
 //
+// Files: oscillatory_shear_setup.cpp (orientations, options, relaxation, plates),
+// oscillatory_shear.cpp (the loading), oscillatory_shear_evaluation.cpp (the per-cycle fit);
+// the calibration of k_n: shear_calibration.hpp.
+//
 // Before the test the periodic structure is relaxed by the procedure of §2.2
 // (dem::relax_zeroing_velocities) unless `relax` is false; the shear histories it builds are not
 // carried into the test set-up, which is therefore settled by the same procedure (plates fixed)
@@ -33,6 +37,7 @@
 #include <string>
 #include <vector>
 
+#include "packlab/core/columns.hpp"
 #include "packlab/core/packing.hpp"
 #include "packlab/dem/engine.hpp"
 #include "packlab/dem/relax.hpp"
@@ -51,7 +56,7 @@ std::vector<ShearOrientation> shear_orientations(const std::string& spec);
 // "normal z, shear x" as "z:x".
 std::string orientation_name(const ShearOrientation& o);
 
-struct ShearTestOptions {
+struct OscillatoryShearOptions {
   // Material (Table 1). Stiffnesses are PFC particle stiffnesses under the "particle" rule (the
   // contact and the bond then act with k/2, two particle springs in series, as in PFC3D), or
   // contact stiffnesses under the "contact" rule.
@@ -83,13 +88,13 @@ struct ShearTestOptions {
 };
 
 // Throws InputError naming the option that is out of range.
-void validate(const ShearTestOptions& options);
+void validate(const OscillatoryShearOptions& options);
 
 // The engine configuration the test uses (contact law, bond material, time step safety, threads).
-dem::EngineConfig shear_engine_config(const ShearTestOptions& options);
+dem::EngineConfig shear_engine_config(const OscillatoryShearOptions& options);
 
 // The §2.2 relaxation of a periodic bonded packing; returns it with the new positions (velocities zero).
-Packing relax_bonded(const Packing& bonded, const ShearTestOptions& options, dem::ZeroVelocityRelaxResult* result = nullptr);
+Packing relax_bonded(const Packing& bonded, const OscillatoryShearOptions& options, dem::ZeroVelocityRelaxResult* result = nullptr);
 
 // The packing with coordinates, box and bond images permuted so that the plate normal is z'
 // and the shear direction x' (x' = old direction axis, y' = the third axis, z' = old normal).
@@ -136,6 +141,13 @@ struct ShearCycle {
 // Per-cycle moduli from samples of one cycle taken at phases 2 pi k / n (any offset allowed).
 ShearCycle evaluate_cycle(const std::vector<ShearSample>& samples, int cycle);
 
+// The samples as columns (stress_strain.csv, Python's samples): cycle, step, time, phase,
+// strain, stress, plate_stress, region_0 .. region_{regions-1}, kinetic_energy, strain_energy.
+Columns shear_sample_columns(const std::vector<ShearSample>& samples, int regions);
+// The cycles as columns (cycles.csv): cycle, strain_amplitude, stress_amplitude,
+// complex_modulus, phase_angle, storage_modulus, loss_modulus, plate_storage_modulus.
+Columns shear_cycle_columns(const std::vector<ShearCycle>& cycles);
+
 struct ShearRun {
   ShearOrientation orientation;
   std::vector<ShearSample> samples;
@@ -159,9 +171,9 @@ struct ShearRun {
 
 // One orientation of an already relaxed periodic bonded packing.
 ShearRun run_shear_orientation(const Packing& bonded, const ShearOrientation& orientation,
-                               const ShearTestOptions& options);
+                               const OscillatoryShearOptions& options);
 
-struct ShearTestResult {
+struct OscillatoryShearResult {
   std::vector<ShearRun> runs;
   double storage_modulus_mean = 0.0;  // [Pa]
   double storage_modulus_std = 0.0;   // sample standard deviation over orientations [Pa]
@@ -175,22 +187,6 @@ struct ShearTestResult {
 };
 
 // InputError when the packing is not periodic along all three axes or has no intact bond.
-ShearTestResult run_shear_test(const Packing& bonded, const ShearTestOptions& options);
-
-// Calibration (issue item 4): k_n such that the mean G' over `options.orientations` equals
-// target [Pa], k_s following at the ratio k_s/k_n of the options; Newton with a
-// finite-difference derivative (mechanics::calibrate). G' is linear in k_n at a fixed ratio,
-// so one Newton step lands on the target.
-struct ShearCalibrationResult {
-  double normal_stiffness = 0.0;  // [N/m]
-  double shear_stiffness = 0.0;   // [N/m]
-  double storage_modulus = 0.0;   // at the result [Pa]
-  bool converged = false;
-  int iterations = 0, evaluations = 0;
-  std::vector<double> tried_normal_stiffness, tried_storage_modulus;
-  std::string reason;
-};
-ShearCalibrationResult calibrate_normal_stiffness(const Packing& bonded, double target, const ShearTestOptions& options,
-                                                  double tolerance = 0.005, int max_iterations = 10);
+OscillatoryShearResult run_oscillatory_shear(const Packing& bonded, const OscillatoryShearOptions& options);
 
 }  // namespace packlab::mechanics

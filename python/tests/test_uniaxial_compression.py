@@ -13,7 +13,7 @@ E, NU = 6.53e9, 0.17
 
 
 def sc_column(layers=8):
-    """3 x 3 x layers simple cubic lattice, periodic, with beam bonds to all 26 neighbours
+    """3 x 3 x layers simple cubic lattice, periodic, with elastic bonds to all 26 neighbours
     (the pairs within 1.75 d), built with Packing.set_bonds."""
     p = packlab.generate_lattice(type="sc", cells=(3, 3, layers), radius=R)
     d = 2 * R
@@ -34,7 +34,7 @@ def sc_column(layers=8):
 
 
 def test_glued_plate_gives_the_closed_form_modulus_of_a_simple_cubic_column():
-    # Constrained modulus of the SC beam lattice with 26 bonded neighbours (tests/mechanics).
+    # Constrained modulus of the SC elastic-bond lattice with 26 bonded neighbours (tests/mechanics).
     g = E / (2 * (1 + NU))
     m = math.pi / 4 * (E + math.sqrt(2) * (E + g) + 4 * (E + 2 * g) / (3 * math.sqrt(3)))
     calls = []

@@ -1,5 +1,5 @@
 // packlab test shear IN [--config FILE] [--normal-stiffness 100 --shear-stiffness 10 --cycles 10
-//   --amplitude 0.001 --orientations all|x,y,z|z:x,...] --out DIR
+//   --amplitude 0.001 --orientations all|x,y,z|z:x,... --relax-max-steps N] --out DIR
 // The oscillatory shear test of doh-elastic-properties §2.4 on a bonded model (any file with
 // bonds: `packlab bond` output, lattices included): §2.2 relaxation, plates from the periodic
 // repetition, ten cycles of linearly increasing amplitude, G' = |G*| cos(delta) per orientation.
@@ -12,7 +12,6 @@
 #include <filesystem>
 #include <memory>
 #include <numbers>
-#include <sstream>
 
 #include "packlab/cli/commands.hpp"
 #include "packlab/core/error.hpp"
@@ -22,20 +21,21 @@
 #include "packlab/io/packing_io.hpp"
 #include "packlab/io/plot.hpp"
 #include "packlab/io/report.hpp"
-#include "packlab/mechanics/shear_test.hpp"
+#include "packlab/io/table.hpp"
+#include "packlab/mechanics/oscillatory_shear.hpp"
 
 namespace packlab::cli {
 
 // Shared with calibrate_shear.cpp (declared there): the material/loading flags and config keys of
 // both shear commands, and the report's parameter block.
-std::function<void(mechanics::ShearTestOptions&, std::string&, bool&)> add_shear_flags(CLI::App* cmd,
+std::function<void(mechanics::OscillatoryShearOptions&, std::string&, bool&)> add_shear_flags(CLI::App* cmd,
                                                                                        const std::string& command);
-nlohmann::json shear_parameters_json(const mechanics::ShearTestOptions& t, const std::string& orientations);
+nlohmann::json shear_parameters_json(const mechanics::OscillatoryShearOptions& t, const std::string& orientations);
 
 namespace {
 
 struct ShearCliOptions {
-  mechanics::ShearTestOptions test;
+  mechanics::OscillatoryShearOptions test;
   std::string orientations = "all";
   std::string config;
   bool no_relax = false;
@@ -88,7 +88,7 @@ std::string shear_config_reference() {
 
 // Adds the flags; the returned function (call it in the callback) reads --config, then overrides
 // with the flags given, and fills the test options, the orientation spec and the plot switch.
-std::function<void(mechanics::ShearTestOptions&, std::string&, bool&)> add_shear_flags(CLI::App* cmd,
+std::function<void(mechanics::OscillatoryShearOptions&, std::string&, bool&)> add_shear_flags(CLI::App* cmd,
                                                                                        const std::string& command) {
   auto flags = std::make_shared<ShearCliOptions>();
   flags->test.threads = 1;
@@ -117,11 +117,11 @@ std::function<void(mechanics::ShearTestOptions&, std::string&, bool&)> add_shear
   cmd->add_option("--orientations", flags->orientations,
                   "all (six), plate normals (x,y,z: both shear directions each) or pairs normal:direction (z:x)")
       ->capture_default_str();
-  cmd->add_option("--relax-steps", ft.relax_options.max_steps, "Step limit of the §2.2 relaxation")
+  cmd->add_option("--relax-max-steps", ft.relax_options.max_steps, "Step limit of the §2.2 relaxation")
       ->capture_default_str();
   cmd->add_flag("--no-relax", flags->no_relax, "Shear the structure as it is (no §2.2 relaxation, no settling)");
   cmd->add_option("--threads", ft.threads, "OpenMP threads (0 = all cores)")->capture_default_str();
-  return [cmd, flags, command](mechanics::ShearTestOptions& out, std::string& orientations, bool& plots) {
+  return [cmd, flags, command](mechanics::OscillatoryShearOptions& out, std::string& orientations, bool& plots) {
     auto given = [&](const char* name) { return cmd->count(name) > 0; };
     ShearCliOptions r;
     r.test.threads = 1;
@@ -143,7 +143,7 @@ std::function<void(mechanics::ShearTestOptions&, std::string&, bool&)> add_shear
     if (given("--plate-layers")) t.plate_layers = f.plate_layers;
     if (given("--regions")) t.regions = f.regions;
     if (given("--orientations")) r.orientations = flags->orientations;
-    if (given("--relax-steps")) t.relax_options.max_steps = f.relax_options.max_steps;
+    if (given("--relax-max-steps")) t.relax_options.max_steps = f.relax_options.max_steps;
     if (given("--threads")) t.threads = f.threads;
     if (flags->no_relax) t.relax = t.settle = false;
     t.orientations = mechanics::shear_orientations(r.orientations);
@@ -154,7 +154,7 @@ std::function<void(mechanics::ShearTestOptions&, std::string&, bool&)> add_shear
   };
 }
 
-nlohmann::json shear_parameters_json(const mechanics::ShearTestOptions& t, const std::string& orientations) {
+nlohmann::json shear_parameters_json(const mechanics::OscillatoryShearOptions& t, const std::string& orientations) {
   return {{"normal_stiffness", t.normal_stiffness},
           {"shear_stiffness", t.shear_stiffness},
           {"normal_strength", t.normal_strength},
@@ -182,36 +182,22 @@ nlohmann::json shear_parameters_json(const mechanics::ShearTestOptions& t, const
 
 namespace {
 
-std::string stress_strain_csv(const mechanics::ShearTestResult& result, int regions) {
-  std::ostringstream csv;
-  csv << "orientation,cycle,step,time,phase,strain,stress,plate_stress";
-  for (int k = 0; k < regions; ++k) csv << ",region_" << k;
-  csv << ",kinetic_energy,strain_energy\n";
-  for (const auto& run : result.runs) {
-    const std::string name = mechanics::orientation_name(run.orientation);
-    for (const auto& s : run.samples) {
-      csv << fmt::format("{},{},{},{:.10g},{:.10g},{:.10g},{:.10g},{:.10g}", name, s.cycle, s.step, s.time, s.phase,
-                         s.strain, s.stress, s.plate_stress);
-      for (double v : s.region_stress) csv << fmt::format(",{:.10g}", v);
-      csv << fmt::format(",{:.6g},{:.6g}\n", s.kinetic_energy, s.strain_energy);
-    }
-  }
-  return csv.str();
-}
-
-std::string cycles_csv(const mechanics::ShearTestResult& result) {
-  std::ostringstream csv;
-  csv << "orientation,cycle,strain_amplitude,stress_amplitude,complex_modulus,phase_angle,storage_modulus,"
-         "loss_modulus,plate_storage_modulus\n";
+std::string stress_strain_csv(const mechanics::OscillatoryShearResult& result, int regions) {
+  std::string csv = io::csv_header(mechanics::shear_sample_columns({}, regions), "orientation");
   for (const auto& run : result.runs)
-    for (const auto& c : run.cycles)
-      csv << fmt::format("{},{},{:.10g},{:.10g},{:.10g},{:.10g},{:.10g},{:.10g},{:.10g}\n",
-                         mechanics::orientation_name(run.orientation), c.cycle, c.strain_amplitude, c.stress_amplitude,
-                         c.complex_modulus, c.phase_angle, c.storage_modulus, c.loss_modulus, c.plate_storage_modulus);
-  return csv.str();
+    io::append_csv_rows(csv, mechanics::shear_sample_columns(run.samples, regions),
+                        mechanics::orientation_name(run.orientation));
+  return csv;
 }
 
-nlohmann::json shear_result_json(const mechanics::ShearTestResult& result) {
+std::string cycles_csv(const mechanics::OscillatoryShearResult& result) {
+  std::string csv = io::csv_header(mechanics::shear_cycle_columns({}), "orientation");
+  for (const auto& run : result.runs)
+    io::append_csv_rows(csv, mechanics::shear_cycle_columns(run.cycles), mechanics::orientation_name(run.orientation));
+  return csv;
+}
+
+nlohmann::json shear_result_json(const mechanics::OscillatoryShearResult& result) {
   nlohmann::json per = nlohmann::json::array();
   double plate_mean = 0.0;
   std::size_t broken = 0;
@@ -284,7 +270,7 @@ void add_test_shear(CLI::App& test) {
   cmd->add_flag("--no-plots", opt->no_plots, "Do not draw the PNG plot");
   cmd->add_flag("--quiet", opt->quiet, "No progress output");
   cmd->callback([opt, apply] {
-    mechanics::ShearTestOptions options;
+    mechanics::OscillatoryShearOptions options;
     std::string orientations;
     bool plots = true;
     apply(options, orientations, plots);
@@ -307,7 +293,7 @@ void add_test_shear(CLI::App& test) {
       last = done;
       progress.update(offset + done, "orientation " + stage);
     };
-    const mechanics::ShearTestResult result = mechanics::run_shear_test(packing, options);
+    const mechanics::OscillatoryShearResult result = mechanics::run_oscillatory_shear(packing, options);
     progress.finish();
 
     io::write_text_atomically(dir / "stress_strain.csv", stress_strain_csv(result, options.regions));

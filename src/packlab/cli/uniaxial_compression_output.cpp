@@ -1,0 +1,166 @@
+#include "packlab/cli/uniaxial_compression_output.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "packlab/analyze/stress_strain.hpp"
+#include "packlab/io/atomic_file.hpp"
+#include "packlab/io/packing_io.hpp"
+#include "packlab/io/plot.hpp"
+#include "packlab/io/table.hpp"
+
+namespace packlab::cli {
+
+nlohmann::json uniaxial_compression_report(const mechanics::UniaxialCompressionResult& r, const mechanics::UniaxialCompressionOptions& o) {
+  nlohmann::json j;
+  j["youngs_modulus"] = r.youngs_modulus;
+  j["strength"] = r.strength;
+  j["broken_bonds"] = r.broken_bonds;
+  j["strain_at_peak"] = r.strain_at_peak;
+  j["modulus_fit"] = {{"method", "max_tangent"},
+                      {"lower_fraction", o.modulus_lower},
+                      {"window_fraction", o.modulus_window},
+                      {"strain_begin", r.modulus.strain_begin},
+                      {"strain_end", r.modulus.strain_end},
+                      {"points", r.modulus.points},
+                      {"r2", r.modulus.r2},
+                      {"found", r.modulus.found}};
+  j["height"] = r.height;
+  j["area"] = r.area;
+  j["plate_speed"] = r.plate_speed;
+  j["strain_rate"] = o.strain_rate;
+  j["max_strain"] = o.max_strain;
+  j["sides"] = o.sides;
+  j["plate"] = o.plate;
+  j["plate_layers"] = o.plate_layers;
+  j["glued_particles"] = r.glued_particles;
+  j["time_step"] = r.time_step;
+  j["steps"] = r.steps;
+  j["max_kinetic_to_strain_energy"] = r.max_kinetic_ratio;
+  j["particles"] = r.particles;
+  j["fixed_particles"] = r.fixed_particles;
+  j["bonds"] = r.bonds;
+  j["dropped_bonds"] = r.dropped_bonds;
+  j["stop_reason"] = r.stop_reason;
+  j["seconds"] = r.seconds;
+  j["particle_steps_per_second"] =
+      r.seconds > 0 ? static_cast<double>(r.particles) * static_cast<double>(r.steps) / r.seconds : 0.0;
+  j["bond_steps_per_second"] =
+      r.seconds > 0 ? static_cast<double>(r.bonds) * static_cast<double>(r.steps) / r.seconds : 0.0;
+  nlohmann::json snaps = nlohmann::json::array();
+  for (const auto& s : r.snapshots) {
+    nlohmann::json sj{{"requested_strain", s.requested_strain}, {"strain", s.strain}, {"stress", s.stress}};
+    nlohmann::json types = nlohmann::json::array();
+    for (const auto& t : analyze::stress_by_type(r.model, s.particle_stress))
+      types.push_back({{"type", t.type},
+                       {"particles", t.particles},
+                       {"mean_xx", t.mean[0]}, {"mean_yy", t.mean[1]}, {"mean_zz", t.mean[2]},
+                       {"sd_xx", t.sd[0]}, {"sd_yy", t.sd[1]}, {"sd_zz", t.sd[2]},
+                       {"axial_to_vertical", t.mean[2] != 0.0 ? t.mean[0] / t.mean[2] : 0.0}});
+    sj["stress_by_type"] = types;
+    double lo = 0, hi = 0, sum = 0;
+    std::size_t count = 0, compressed = 0;
+    for (double e : s.bond_strain)
+      if (std::isfinite(e)) {
+        lo = std::min(lo, e);
+        hi = std::max(hi, e);
+        sum += e;
+        ++count;
+        compressed += e < 0.0;
+      }
+    sj["bond_strain"] = {{"min", lo}, {"max", hi}, {"mean", count ? sum / static_cast<double>(count) : 0.0},
+                         {"compressed_fraction", count ? static_cast<double>(compressed) / static_cast<double>(count) : 0.0}};
+    snaps.push_back(sj);
+  }
+  j["snapshots"] = snaps;
+  j["units"] = {{"youngs_modulus", "Pa"}, {"strength", "Pa"}, {"height", "m"}, {"area", "m^2"},
+                {"plate_speed", "m/s"}, {"strain_rate", "1/s"}, {"time_step", "s"}, {"stress", "Pa"}};
+  return j;
+}
+
+void write_uniaxial_compression_outputs(const mechanics::UniaxialCompressionResult& r, const mechanics::UniaxialCompressionOptions& /*o*/, const std::filesystem::path& dir,
+                               bool plots, bool write_model) {
+  std::filesystem::create_directories(dir);
+  io::PlotOptions plot;
+  plot.enabled = plots;
+  {
+    io::write_text_atomically(dir / "curve.csv", io::to_csv(mechanics::curve_columns(r.curve)));
+    const std::string curve = (dir / "curve.csv").string();
+    io::make_plot("stress_strain",
+                  {curve, "--modulus", fmt::format("{:.17g}", r.modulus.youngs_modulus), "--intercept",
+                   fmt::format("{:.17g}", r.modulus.intercept), "--fit-begin", fmt::format("{:.17g}", r.modulus.strain_begin),
+                   "--fit-end", fmt::format("{:.17g}", r.modulus.strain_end)},
+                  dir / "stress_strain.png", plot);
+    io::make_plot("stress_strain", {curve, "--force-displacement"}, dir / "force_displacement.png", plot);
+    io::make_plot("broken_bonds", {curve}, dir / "broken_bonds.png", plot);
+  }
+  if (!r.snapshots.empty()) {
+    double lo = 0, hi = 0;
+    for (const auto& s : r.snapshots)
+      for (double e : s.bond_strain)
+        if (std::isfinite(e)) {
+          lo = std::min(lo, e);
+          hi = std::max(hi, e);
+        }
+    const int bins = 60;
+    if (!(hi > lo)) hi = lo + 1e-6;
+    std::string csv = "strain_bin";
+    for (const auto& s : r.snapshots) csv += fmt::format(",fraction_at_{:.6g}", s.strain);
+    csv += "\n";
+    std::vector<std::vector<std::size_t>> h;
+    std::vector<double> totals;
+    for (const auto& s : r.snapshots) {
+      h.push_back(analyze::histogram(s.bond_strain, lo, hi, bins));
+      double t = 0;
+      for (auto c : h.back()) t += static_cast<double>(c);
+      totals.push_back(t > 0 ? t : 1.0);
+    }
+    for (int b = 0; b < bins; ++b) {
+      csv += fmt::format("{:.17g}", lo + (b + 0.5) * (hi - lo) / bins);
+      for (std::size_t s = 0; s < h.size(); ++s)
+        csv += fmt::format(",{:.17g}", static_cast<double>(h[s][static_cast<std::size_t>(b)]) / totals[s]);
+      csv += "\n";
+    }
+    io::write_text_atomically(dir / "bond_strain.csv", csv);
+    io::make_plot("bond_strain", {(dir / "bond_strain.csv").string()}, dir / "bond_strain.png", plot);
+    std::string ps = "strain,stress,type,particles,mean_xx,sd_xx,mean_yy,sd_yy,mean_zz,sd_zz\n";
+    for (const auto& s : r.snapshots)
+      for (const auto& t : analyze::stress_by_type(r.model, s.particle_stress))
+        ps += fmt::format("{:.17g},{:.17g},{},{},{:.17g},{:.17g},{:.17g},{:.17g},{:.17g},{:.17g}\n", s.strain, s.stress,
+                          t.type, t.particles, t.mean[0], t.sd[0], t.mean[1], t.sd[1], t.mean[2], t.sd[2]);
+    io::write_text_atomically(dir / "particle_stress.csv", ps);
+  }
+  {
+    std::string csv = "bond,time,strain,x,y,z\n";
+    Packing breaks;
+    breaks.box = r.model.box;
+    auto& time_field = breaks.field_or_add("time");
+    std::vector<double> times, strains;
+    for (const auto& b : r.breaks) {
+      const double strain = r.plate_speed * b.time / r.height;
+      csv += fmt::format("{},{:.17g},{:.17g},{:.17g},{:.17g},{:.17g}\n", b.bond, b.time, strain, b.position.x,
+                         b.position.y, b.position.z);
+      const auto& bonds = r.model.bonds;
+      const double rb = 0.5 * std::min(r.model.radius[static_cast<std::size_t>(bonds.i[b.bond])],
+                                       r.model.radius[static_cast<std::size_t>(bonds.j[b.bond])]);
+      breaks.add(b.position, rb, 0);
+      times.push_back(b.time);
+      strains.push_back(strain);
+    }
+    time_field.values = times;
+    breaks.field_or_add("strain").values = strains;
+    io::write_text_atomically(dir / "broken_bonds.csv", csv);
+    io::WriteOptions w;
+    w.comment = "packlab test compress: positions of failed bonds (bond midpoints at failure)";
+    io::write_packing(breaks, dir / "broken_bonds.vtu", w);
+  }
+  if (write_model) {
+    io::WriteOptions w;
+    w.comment = "packlab test compress: final state (bond state 1 = broken)";
+    io::write_packing(r.model, dir / "model.vtu", w);
+  }
+}
+
+}  // namespace packlab::cli

@@ -1,0 +1,290 @@
+// Lubachevsky–Stillinger growth: set-up (validation, classes, initial velocities), the cell
+// grids rebuilt every block, the packing out, and the random start. The event loop is ls.cpp.
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <functional>
+#include <limits>
+#include <numbers>
+#include <stdexcept>
+#include <string>
+
+#include "packlab/core/error.hpp"
+#include "packlab/generate/ls.hpp"
+#include "packlab/generate/overlap_check.hpp"
+
+namespace packlab::generate {
+
+namespace {
+
+constexpr double inf = std::numeric_limits<double>::infinity();
+constexpr double cell_margin = 1e-9;  // relative slack between the largest contact distance and a cell edge
+
+}  // namespace
+
+// ---------------------------------------------------------------------------------------------
+// Set-up
+
+LsSimulation::LsSimulation(const Packing& start, const LsParams& params, Random& rng) : params_(params) {
+  params_.validate();
+  start.validate();
+  for (int a = 0; a < 3; ++a)
+    if (!start.box.periodic[a])
+      fail_input(fmt::format("box periodic along {} = false: Lubachevsky-Stillinger growth needs a box periodic "
+                             "on every axis",
+                             "xyz"[a]));
+  if (start.size() < 2) fail_input("particles = " + std::to_string(start.size()) + ": must be >= 2");
+  const double ratio = min_contact_ratio(start);
+  require(ratio >= 1.0 - 1e-9, "min contact ratio d/(r_i+r_j)", ratio,
+          ">= 1: the starting packing has overlapping spheres (hard spheres cannot grow from it)");
+  const double s_start = std::cbrt(start.volume_fraction());
+  std::vector<double> unit(start.size());
+  for (std::size_t i = 0; i < start.size(); ++i) unit[i] = start.radius[i] / s_start;
+  init(start.box, start.position, std::move(unit), s_start, rng);
+  skin_rel_ = params_.neighbor_skin;
+  if (!start.velocity.empty()) {
+    // Keep the incoming velocities' directions and relative magnitudes; rescale to kT below.
+    bool any = false;
+    for (const auto& v : start.velocity) any = any || norm2(v) > 0.0;
+    if (any) {
+      for (std::size_t i = 0; i < body_.size(); ++i) body_[i].v = start.velocity[id_[i]];
+      double sum = 0.0;
+      for (const auto& b : body_) sum += norm2(b.v);
+      const double f = std::sqrt(3.0 * static_cast<double>(body_.size()) * v_thermal_ * v_thermal_ / sum);
+      for (auto& b : body_) b.v *= f;
+    }
+  }
+}
+
+LsSimulation::LsSimulation(const Box& box, std::vector<Vec3> points, std::vector<double> unit_radius,
+                           const LsParams& params, Random& rng)
+    : params_(params) {
+  params_.validate();
+  for (int a = 0; a < 3; ++a)
+    if (!box.periodic[a])
+      fail_input(fmt::format("box periodic along {} = false: Lubachevsky-Stillinger growth needs a box periodic "
+                             "on every axis",
+                             "xyz"[a]));
+  if (points.size() < 2) fail_input("particles = " + std::to_string(points.size()) + ": must be >= 2");
+  if (unit_radius.size() != points.size()) throw std::logic_error("LsSimulation: radius and point counts differ");
+  init(box, std::move(points), std::move(unit_radius), 0.0, rng);
+  skin_rel_ = params_.neighbor_skin;
+}
+
+void LsSimulation::init(const Box& box, std::vector<Vec3> points, std::vector<double> unit_radius, double s0,
+                        Random& rng) {
+  box_ = box;
+  origin_ = box.lo;
+  box_.lo = {0, 0, 0};
+  const std::size_t n = points.size();
+  for (double r : unit_radius) require(r > 0.0 && std::isfinite(r), "radius", r, "> 0");
+  // Classes: distinct radii, largest first.
+  std::vector<double> distinct = unit_radius;
+  std::sort(distinct.begin(), distinct.end(), std::greater<>());
+  class_rho_.clear();
+  for (double r : distinct)
+    if (class_rho_.empty() || r < class_rho_.back() * (1.0 - 1e-12)) class_rho_.push_back(r);
+  if (class_rho_.size() > 64)
+    fail_input(fmt::format("distinct radii = {}: Lubachevsky-Stillinger growth supports at most 64 size classes",
+                           class_rho_.size()));
+  nclass_ = static_cast<int>(class_rho_.size());
+  body_.resize(n);
+  cls_.resize(n);
+  id_.resize(n);
+  count_.assign(n, 0);
+  ev_.resize(n);
+  cell_.resize(n);
+  slot_.resize(n);
+  cc_.resize(n);
+  double volume = 0.0;
+  for (std::size_t i = 0; i < n; ++i) {
+    Body& b = body_[i];
+    b.x = box_.wrap(points[i] - origin_);
+    b.t = 0.0;
+    b.rho = unit_radius[i];
+    int k = 0;
+    while (k + 1 < nclass_ && unit_radius[i] < class_rho_[k] * (1.0 - 1e-12)) ++k;
+    cls_[i] = k;
+    b.rho = class_rho_[k];
+    id_[i] = static_cast<int>(i);
+    volume += 4.0 / 3.0 * std::numbers::pi * b.rho * b.rho * b.rho;
+  }
+  phi1_ = volume / box_.volume();
+  s0_ = s0;
+  v_thermal_ = 2.0 * class_rho_[0];
+  // Maxwell velocities, zero total momentum, kinetic energy exactly 3/2 N kT.
+  Vec3 mean{};
+  for (auto& b : body_) {
+    b.v = {rng.normal() * v_thermal_, rng.normal() * v_thermal_, rng.normal() * v_thermal_};
+    mean += b.v;
+  }
+  mean *= 1.0 / static_cast<double>(n);
+  double sum = 0.0;
+  for (auto& b : body_) {
+    b.v -= mean;
+    sum += norm2(b.v);
+  }
+  const double f = std::sqrt(3.0 * static_cast<double>(n) * v_thermal_ * v_thermal_ / sum);
+  for (auto& b : body_) b.v *= f;
+  // The minimum image must be unique at contact: largest contact distance < half the box.
+  const double phi_final = params_.target_volume_fraction > 0.0 ? params_.target_volume_fraction : 0.9;
+  const double s_final = std::cbrt(phi_final / phi1_);
+  const double l_min = std::min({box_.length.x, box_.length.y, box_.length.z});
+  if (4.0 * class_rho_[0] * s_final >= l_min)
+    fail_input(fmt::format("box edge = {:g} m is less than two largest diameters ({:g} m) at volume fraction {:g}; "
+                           "use more particles",
+                           l_min, 4.0 * class_rho_[0] * s_final, phi_final));
+  status_ = LsStatus{};
+  status_.scale = s0_;
+  status_.volume_fraction = phi1_ * s0_ * s0_ * s0_;
+}
+
+void LsSimulation::set_params(const LsParams& params) {
+  params.validate();
+  params_ = params;
+}
+
+void LsSimulation::set_positions(const std::vector<Vec3>& position) {
+  if (position.size() != body_.size()) throw std::logic_error("LsSimulation::set_positions: wrong particle count");
+  for (std::size_t i = 0; i < body_.size(); ++i) {
+    body_[i].x = box_.wrap(position[id_[i]] - origin_);
+    body_[i].t = 0.0;
+  }
+}
+
+// ---------------------------------------------------------------------------------------------
+// Cells of bounding-sphere centres, one grid per class, rebuilt every block.
+
+void LsSimulation::build_grids() {
+  const double g = params_.growth_rate;
+  const double s_want = g > 0.0 ? s0_ * 1.02 : s0_;
+  std::vector<long> per_class(nclass_, 0);
+  for (int k : cls_) ++per_class[k];
+  grid_.resize(nclass_);
+  skin_.assign(nclass_, 0.0);
+  bound_cap_.assign(nclass_, 0.0);
+  // Skins relative to the current diameter, at least that of s = 0.2 (growth from points).
+  const double l_min0 = std::min({box_.length.x, box_.length.y, box_.length.z});
+  // Keep 2 x (largest bounding radius) within a quarter box.
+  skin_rel_ = std::min(skin_rel_, std::max(0.005, (0.2 * l_min0 - class_rho_[0] * s_want) /
+                                                      (2.0 * class_rho_[0] * std::max(s0_, 0.2))));
+  for (int k = 0; k < nclass_; ++k) skin_[k] = skin_rel_ * 2.0 * class_rho_[k] * std::max(s0_, 0.2);
+  double s_cap = inf;
+  for (int k = 0; k < nclass_; ++k) {
+    Grid& gr = grid_[k];
+    const double d = 2.0 * (class_rho_[k] * s_want + skin_[k]) * (1.0 + cell_margin);
+    double want[3];
+    for (int a = 0; a < 3; ++a) want[a] = std::clamp(std::floor(box_.length[a] / d), 1.0, 1e6);
+    const double max_cells = 2.0 * static_cast<double>(per_class[k]) + 27.0;
+    while (want[0] * want[1] * want[2] > max_cells) {
+      const int a = want[0] >= want[1] && want[0] >= want[2] ? 0 : (want[1] >= want[2] ? 1 : 2);
+      want[a] = std::max(1.0, std::floor(want[a] / 2.0));
+    }
+    for (int a = 0; a < 3; ++a) {
+      gr.n[a] = static_cast<int>(want[a]);
+      gr.h[a] = box_.length[a] / gr.n[a];
+      s_cap = std::min(s_cap, (gr.h[a] / (2.0 * (1.0 + cell_margin)) - skin_[k]) / class_rho_[k]);
+    }
+  }
+  // Unique minimum image at contact, and neighbour images within one box length.
+  const double l_min = std::min({box_.length.x, box_.length.y, box_.length.z});
+  s_cap = std::min(s_cap, (l_min / 4.0 * (1.0 - cell_margin) - skin_[0]) / class_rho_[0]);
+  if (g > 0.0 && s_cap <= s0_)
+    fail_input(fmt::format("box edge = {:g} m: too small for the spheres at volume fraction {:g}; use more particles",
+                           l_min, phi1_ * s0_ * s0_ * s0_));
+  for (int k = 0; k < nclass_; ++k) bound_cap_[k] = class_rho_[k] * std::max(s_cap, s0_) + skin_[k];
+  reach_.assign(static_cast<std::size_t>(nclass_) * nclass_, 0.0);
+  for (int k = 0; k < nclass_; ++k)
+    for (int m = 0; m < nclass_; ++m)
+      reach_[k * nclass_ + m] = (bound_cap_[k] + bound_cap_[m]) * (1.0 + cell_margin);
+  // Fill.
+  std::vector<int> occupancy;
+  for (int k = 0; k < nclass_; ++k) {
+    Grid& gr = grid_[k];
+    occupancy.assign(static_cast<std::size_t>(gr.n[0]) * gr.n[1] * gr.n[2], 0);
+    for (std::size_t i = 0; i < body_.size(); ++i) {
+      if (cls_[i] != k) continue;
+      auto& c = cc_[i];
+      for (int a = 0; a < 3; ++a)
+        c[a] = std::clamp(static_cast<int>(std::floor(body_[i].x[a] / gr.h[a])), 0, gr.n[a] - 1);
+      cell_[i] = c[0] + gr.n[0] * (c[1] + gr.n[1] * c[2]);
+      ++occupancy[cell_[i]];
+    }
+    int most = 0;
+    for (int o : occupancy) most = std::max(most, o);
+    gr.cap = std::max(8, most + 4);
+    gr.fill.assign(occupancy.size(), 0);
+    gr.slots.assign(occupancy.size() * gr.cap, -1);
+  }
+  for (std::size_t i = 0; i < body_.size(); ++i) insert(static_cast<int>(i));
+  // Block end: the target or the largest scale these cells allow.
+  t_target_ = inf;
+  const double phi_t = params_.target_volume_fraction;
+  if (phi_t > 0.0 && g > 0.0) t_target_ = (std::cbrt(phi_t / phi1_) - s0_) / g;
+  const double t_cap = g > 0.0 ? (s_cap - s0_) / g : inf;
+  target_in_block_ = t_target_ <= t_cap;
+  t_end_ = std::min(t_target_, t_cap);
+}
+
+// ---------------------------------------------------------------------------------------------
+// Result and start
+
+Packing LsSimulation::packing() {
+  Packing p;
+  Box box = box_;
+  box.lo = origin_;
+  p.box = box;
+  const std::size_t n = body_.size();
+  p.position.resize(n);
+  p.radius.resize(n);
+  p.type.assign(n, particle_type::structural);
+  p.velocity.resize(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    const Body& b = body_[i];
+    const int o = id_[i];
+    p.position[o] = box.wrap(b.x + b.v * (0.0 - b.t) + origin_);
+    p.radius[o] = b.rho * s0_;
+    p.velocity[o] = b.v;
+  }
+  const double ratio = min_contact_ratio(p);
+  overlap_correction_ = 0.0;
+  if (ratio < 1.0) {
+    // Round-off contacts: shrink all radii so that no pair overlaps.
+    const double f = ratio * (1.0 - 4.0 * std::numeric_limits<double>::epsilon());
+    for (double& r : p.radius) r *= f;
+    overlap_correction_ = 1.0 - f;
+  }
+  return p;
+}
+
+// ---------------------------------------------------------------------------------------------
+
+LsStart make_ls_start(long particles, const SizeClasses& classes, double radius, double volume_fraction,
+                      Random& rng) {
+  classes.validate();
+  require(particles >= 2 && particles <= 100'000'000, "particles", static_cast<double>(particles), "in [2, 1e8]");
+  require(radius > 0.0 && std::isfinite(radius), "radius", radius, "> 0 m");
+  require(volume_fraction > 0.0 && volume_fraction < 1.0, "volume_fraction", volume_fraction, "in (0, 1)");
+  const std::vector<long> count = classes.counts(particles);
+  const double size_max = *std::max_element(classes.sizes.begin(), classes.sizes.end());
+  double volume = 0.0;
+  std::vector<double> r(classes.sizes.size());
+  for (std::size_t k = 0; k < r.size(); ++k) {
+    r[k] = radius * classes.sizes[k] / size_max;
+    volume += static_cast<double>(count[k]) * 4.0 / 3.0 * std::numbers::pi * r[k] * r[k] * r[k];
+  }
+  const double edge = std::cbrt(volume / volume_fraction);
+  LsStart s;
+  s.box.length = {edge, edge, edge};
+  const double to_unit = 1.0 / std::cbrt(volume_fraction);
+  for (std::size_t k = 0; k < r.size(); ++k)
+    for (long q = 0; q < count[k]; ++q) {
+      s.points.push_back({rng.uniform(0, edge), rng.uniform(0, edge), rng.uniform(0, edge)});
+      s.unit_radius.push_back(r[k] * to_unit);
+      s.klass.push_back(static_cast<int>(k));
+    }
+  return s;
+}
+
+}  // namespace packlab::generate

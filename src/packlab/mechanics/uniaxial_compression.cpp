@@ -1,0 +1,144 @@
+// Uniaxial compression: the loading protocol (plate, curve points, snapshots, stop rule) and
+// the result's columns. The specimen: uniaxial_compression_setup.cpp.
+#include "packlab/mechanics/uniaxial_compression.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+
+#include "packlab/core/error.hpp"
+
+namespace packlab::mechanics {
+
+Columns curve_columns(const std::vector<UniaxialCompressionPoint>& curve) {
+  std::vector<double> step, time, displacement, strain, force, stress, kinetic, strain_energy, broken;
+  for (const auto& p : curve) {
+    step.push_back(static_cast<double>(p.step));
+    time.push_back(p.time);
+    displacement.push_back(p.displacement);
+    strain.push_back(p.strain);
+    force.push_back(p.force);
+    stress.push_back(p.stress);
+    kinetic.push_back(p.kinetic_energy);
+    strain_energy.push_back(p.strain_energy);
+    broken.push_back(static_cast<double>(p.broken_bonds));
+  }
+  Columns t;
+  t.add("step", std::move(step), Column::Kind::integer);
+  t.add("time", std::move(time));
+  t.add("displacement", std::move(displacement));
+  t.add("strain", std::move(strain));
+  t.add("force", std::move(force));
+  t.add("stress", std::move(stress));
+  t.add("kinetic_energy", std::move(kinetic));
+  t.add("strain_energy", std::move(strain_energy));
+  t.add("broken_bonds", std::move(broken), Column::Kind::integer);
+  return t;
+}
+
+UniaxialCompressionResult run_uniaxial_compression(const Packing& bonded_model, const UniaxialCompressionOptions& options) {
+  const auto t0 = std::chrono::steady_clock::now();
+  UniaxialCompressionResult result;
+  UniaxialCompressionSpecimen specimen = prepare_uniaxial_compression(bonded_model, options, result);
+  const Packing& model = specimen.model;
+  const std::vector<std::uint8_t>& grip = specimen.grip;
+  const double top = specimen.top;
+  const bool glued = options.plate == "glued";
+  const std::size_t n = model.size();
+
+  dem::EngineConfig config;
+  config.contact_law = "hertz_mindlin";
+  config.types = options.types;
+  config.bond_materials = options.bond_materials;
+  config.time_step = options.time_step;
+  config.time_step_safety = options.time_step_safety;
+  config.threads = options.threads;
+  dem::Engine engine(model, config);
+  const double dt = engine.time_step();
+  result.time_step = dt;
+  result.plate_speed = options.strain_rate * result.height;
+  // Contact plate: a wall. Glued plate: the grip particles move with it (and a wall above them
+  // keeps nothing else from passing; it touches nothing).
+  const std::size_t plate = engine.add_wall(dem::Wall{{0.0, 0.0, top}, {0.0, 0.0, -1.0}, {0.0, 0.0, -result.plate_speed}});
+  std::vector<std::size_t> grip_internal;
+  if (glued) {
+    for (std::size_t k = 0; k < n; ++k)
+      if (grip[static_cast<std::size_t>(engine.original_index()[k])]) {
+        grip_internal.push_back(k);
+        engine.particles().velocity[k] = Vec3{0.0, 0.0, -result.plate_speed};
+      }
+  }
+  auto plate_force = [&] {
+    if (!glued) return engine.wall_force(plate).z;
+    double f = 0.0;
+    for (std::size_t k : grip_internal) f += engine.particles().force[k].z;
+    return f;
+  };
+
+  const double total_time = options.max_strain / options.strain_rate;
+  const auto total_steps = static_cast<long>(std::ceil(total_time / dt));
+  const long interval = std::max(1L, total_steps / options.samples);
+  std::vector<double> pending = options.snapshot_strains;
+  std::sort(pending.begin(), pending.end());
+  std::size_t next_snapshot = 0;
+  double peak = 0.0;
+  result.stop_reason = "reached max_strain";
+  const double t_start = engine.time();
+  while (engine.step_count() < total_steps) {
+    const long remaining = total_steps - engine.step_count();
+    const long chunk = std::min(interval, remaining);
+    if (chunk > 1) engine.run(chunk - 1);
+    const dem::Diagnostics d = engine.step_measured();
+    UniaxialCompressionPoint p;
+    p.step = d.step;
+    p.time = d.time - t_start;
+    p.displacement = result.plate_speed * p.time;
+    p.strain = p.displacement / result.height;
+    p.force = plate_force();
+    p.stress = p.force / result.area;
+    p.kinetic_energy = d.kinetic_energy;
+    p.strain_energy = d.strain_energy;
+    p.broken_bonds = d.broken_bonds;
+    result.curve.push_back(p);
+    if (options.on_point) options.on_point(p);
+    if (p.stress > peak) {
+      peak = p.stress;
+      result.strain_at_peak = p.strain;
+    }
+    while (next_snapshot < pending.size() && p.strain >= pending[next_snapshot]) {
+      UniaxialCompressionSnapshot s;
+      s.requested_strain = pending[next_snapshot++];
+      s.strain = p.strain;
+      s.stress = p.stress;
+      s.bond_strain = engine.bond_strains();
+      s.particle_stress = dem::particle_stress(engine.contact_forces(), engine.packing());
+      result.snapshots.push_back(std::move(s));
+    }
+    if (options.stop_drop > 0.0 && peak > 0.0 && p.strain > result.strain_at_peak && p.stress < options.stop_drop * peak &&
+        d.broken_bonds > 0) {
+      result.stop_reason = fmt::format("stress fell below {:g} x peak after the peak", options.stop_drop);
+      break;
+    }
+  }
+  result.steps = engine.step_count();
+  result.strength = peak;
+  std::vector<double> strain, stress;
+  for (const auto& p : result.curve) {
+    strain.push_back(p.strain);
+    stress.push_back(p.stress);
+  }
+  result.modulus = analyze::fit_youngs_modulus(strain, stress, options.modulus_lower, options.modulus_window);
+  result.youngs_modulus = result.modulus.youngs_modulus;
+  for (const auto& p : result.curve)
+    if (p.stress > 0.2 * peak && p.strain <= result.strain_at_peak && p.strain_energy > 0.0)
+      result.max_kinetic_ratio = std::max(result.max_kinetic_ratio, p.kinetic_energy / p.strain_energy);
+  result.breaks = engine.bond_breaks();
+  result.broken_bonds = result.breaks.size();
+  result.model = engine.packing();  // fixed = substrate and glued plate layers
+  result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  return result;
+}
+
+}  // namespace packlab::mechanics
