@@ -37,8 +37,8 @@ inline void make_read_only(py::array& a) { a.attr("setflags")(py::arg("write") =
 // The view is valid until the vector is resized (the particle count changes).
 template <class T>
 py::array view(std::vector<T>& v, py::handle owner, bool writeable = true) {
-  py::array a = py::array_t<T>({static_cast<py::ssize_t>(v.size())}, {static_cast<py::ssize_t>(sizeof(T))},
-                               v.data(), owner);
+  py::array a =
+      py::array_t<T>({static_cast<py::ssize_t>(v.size())}, {static_cast<py::ssize_t>(sizeof(T))}, v.data(), owner);
   if (!writeable) make_read_only(a);
   return a;
 }
@@ -95,8 +95,7 @@ std::vector<T> from_numpy(const py::handle& values, const char* what, py::ssize_
 
 inline std::vector<Vec3> vec3s_from_numpy(const py::handle& values, const char* what, py::ssize_t n = -1) {
   auto a = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(values);
-  if (!a || a.ndim() != 2 || a.shape(1) != 3)
-    throw py::value_error(std::string(what) + ": must be an N x 3 array");
+  if (!a || a.ndim() != 2 || a.shape(1) != 3) throw py::value_error(std::string(what) + ": must be an N x 3 array");
   if (n >= 0 && a.shape(0) != n)
     throw py::value_error(std::string(what) + ": must have " + std::to_string(n) + " rows, got " +
                           std::to_string(a.shape(0)));
@@ -185,20 +184,20 @@ class ProgressCallback {
 // One function per concern, in the file of the same name (python/src mirrors src/packlab).
 void bind_packing(py::module_& m);
 void bind_io(py::module_& m);
-void bind_generate(py::module_& m);         // generate.cpp: lattice, random, bond
-void bind_generate_vem(py::module_& m);     // generate_vem.cpp
-void bind_generate_ls(py::module_& m);      // generate_ls.cpp
-void bind_generate_shake(py::module_& m);   // generate_shake.cpp
-void bind_generate_scrm(py::module_& m);    // generate_scrm.cpp
-void bind_analyze(py::module_& m);          // analyze.cpp: coordination, porosity, density
-void bind_analyze_rdf(py::module_& m);      // analyze_rdf.cpp
+void bind_generate(py::module_& m);           // generate.cpp: lattice, random, bond
+void bind_generate_vem(py::module_& m);       // generate_vem.cpp
+void bind_generate_ls(py::module_& m);        // generate_ls.cpp
+void bind_generate_shake(py::module_& m);     // generate_shake.cpp
+void bind_generate_scrm(py::module_& m);      // generate_scrm.cpp
+void bind_analyze(py::module_& m);            // analyze.cpp: coordination, porosity, density
+void bind_analyze_rdf(py::module_& m);        // analyze_rdf.cpp
 void bind_analyze_pore_size(py::module_& m);  // analyze_pore_size.cpp
-void bind_analyze_fabric(py::module_& m);   // analyze_fabric.cpp
-void bind_analyze_fits(py::module_& m);     // analyze_fits.cpp: inflection, power law, porosity laws
+void bind_analyze_fabric(py::module_& m);     // analyze_fabric.cpp
+void bind_analyze_fits(py::module_& m);       // analyze_fits.cpp: inflection, power law, porosity laws
 void bind_dem(py::module_& m);
-void bind_shear(py::module_& m);     // shear.cpp: oscillatory shear, its calibration
-void bind_generate_fba(py::module_& m);     // generate_fba.cpp
-void bind_generate_opal(py::module_& m);    // generate_opal.cpp: inverse-opal builder
-void bind_compress(py::module_& m);  // compress.cpp: uniaxial compression, its calibration
+void bind_oscillatory_shear(py::module_& m);     // oscillatory_shear.cpp, its calibration
+void bind_generate_fba(py::module_& m);          // generate_fba.cpp
+void bind_generate_opal(py::module_& m);         // generate_opal.cpp: inverse-opal builder
+void bind_uniaxial_compression(py::module_& m);  // uniaxial_compression.cpp, its calibration
 
 }  // namespace packlab::python

@@ -52,7 +52,7 @@ sequential addition (phi < 0.36). The same seed gives the same packing as the co
   static const std::string bond_doc = R"doc(
 `packlab bond`: a copy of `packing` with a bond between every pair closer than the model's
 cutoff, across periodic boundaries. model "contact": d < (1 + eps)(r_i + r_j) (PFC contact
-bonds, doh-elastic-properties §2.1); "beam": d < cutoff_ratio (r_i + r_j) (elastic beam bonds
+bonds, doh-elastic-properties §2.1); "elastic": d < cutoff_ratio (r_i + r_j) (elastic beam bonds
 within 1.75 d, bpm-inverse-opals §2.1). Bonds are saved in .vtu files.
 )doc" + keywords_doc(io::bond_options(bond_defaults));
   m.def(

@@ -25,8 +25,8 @@ PYBIND11_MODULE(_core, m) {
   packlab::python::bind_analyze_fabric(m);
   packlab::python::bind_analyze_fits(m);
   packlab::python::bind_dem(m);
-  packlab::python::bind_shear(m);
+  packlab::python::bind_oscillatory_shear(m);
   packlab::python::bind_generate_fba(m);
   packlab::python::bind_generate_opal(m);
-  packlab::python::bind_compress(m);
+  packlab::python::bind_uniaxial_compression(m);
 }

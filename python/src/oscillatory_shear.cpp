@@ -91,7 +91,7 @@ py::dict result_dict(const mechanics::OscillatoryShearResult& r, int regions) {
 
 }  // namespace
 
-void bind_shear(py::module_& m) {
+void bind_oscillatory_shear(py::module_& m) {
   m.def(
       "shear_test",
       [](const Packing& packing, double normal_stiffness, double shear_stiffness, double normal_strength,

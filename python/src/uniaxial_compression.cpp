@@ -54,7 +54,7 @@ mechanics::UniaxialCompressionSetup make_setup(const Packing& model, double bond
 
 }  // namespace
 
-void bind_compress(py::module_& m) {
+void bind_uniaxial_compression(py::module_& m) {
   using mechanics::UniaxialCompressionResult;
   py::class_<UniaxialCompressionResult>(m, "UniaxialCompressionResult", "Result of packlab.compress (SI units).")
       .def_readonly("youngs_modulus", &UniaxialCompressionResult::youngs_modulus, "Young's modulus (max-tangent fit) [Pa]")
