@@ -31,7 +31,7 @@ int main(int argc, char** argv) {
   o.threads = threads;
   o.steps_per_cycle = steps_per_cycle;
   o.cycles = cycles;
-  o.orientations = mechanics::shear_orientations("z:x");
+  o.orientations = "z:x";
   auto t0 = std::chrono::steady_clock::now();
   dem::ZeroVelocityRelaxResult relax;
   const Packing relaxed = mechanics::relax_bonded(packing, o, &relax);

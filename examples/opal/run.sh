@@ -25,7 +25,7 @@ $PACKLAB calibrate compress "$OUT/bulk.vtu" --bulk-factor --config "$CFG" --out 
 # The same sample with open sides (a free-standing pillar) and with eq. 16 applied to compressed
 # bonds too (the two other readings in docs/opal.md).
 $PACKLAB calibrate compress "$OUT/bulk.vtu" --bulk-factor --config "$CFG" --sides open --out "$OUT/bulk-open"
-$PACKLAB calibrate compress "$OUT/bulk.vtu" --bulk-factor --config "$CFG" --compressive-breakage true \
+$PACKLAB calibrate compress "$OUT/bulk.vtu" --bulk-factor --config "$CFG" --bond-compressive-breakage \
   --out "$OUT/bulk-compressive"
 
 # 2. FCC inverse opal ([111] along z), 2 x 1 lateral periods, 3 pore layers (box height =

@@ -9,6 +9,7 @@
 #include "columns.hpp"
 #include "common.hpp"
 #include "packlab/generate/bonding.hpp"
+#include "packlab/io/options.hpp"
 #include "packlab/mechanics/oscillatory_shear.hpp"
 #include "packlab/mechanics/shear_calibration.hpp"
 
@@ -17,34 +18,6 @@ namespace packlab::python {
 namespace {
 
 using mechanics::OscillatoryShearOptions;
-
-OscillatoryShearOptions make_options(double normal_stiffness, double shear_stiffness, double normal_strength,
-                              double shear_strength, double friction, double damping, double density,
-                              const std::string& stiffness_rule, int cycles, double amplitude, long steps_per_cycle,
-                              int samples_per_cycle, int plate_layers, int regions, const std::string& orientations,
-                              bool relax, long relax_max_steps, int threads) {
-  OscillatoryShearOptions o;
-  o.normal_stiffness = normal_stiffness;
-  o.shear_stiffness = shear_stiffness;
-  o.normal_strength = normal_strength;
-  o.shear_strength = shear_strength;
-  o.friction = friction;
-  o.damping = damping;
-  o.density = density;
-  o.stiffness_rule = stiffness_rule;
-  o.cycles = cycles;
-  o.amplitude = amplitude;
-  o.steps_per_cycle = steps_per_cycle;
-  o.samples_per_cycle = samples_per_cycle;
-  o.plate_layers = plate_layers;
-  o.regions = regions;
-  o.orientations = mechanics::shear_orientations(orientations);
-  o.relax = o.settle = relax;
-  o.relax_options.max_steps = relax_max_steps;
-  o.threads = threads;
-  mechanics::validate(o);
-  return o;
-}
 
 py::dict result_dict(const mechanics::OscillatoryShearResult& r, int regions) {
   py::list per;
@@ -92,17 +65,26 @@ py::dict result_dict(const mechanics::OscillatoryShearResult& r, int regions) {
 }  // namespace
 
 void bind_oscillatory_shear(py::module_& m) {
+  io::ShearTestRun test_defaults;
+  static const std::string shear_doc = R"doc(
+`packlab test shear` from Python: the oscillatory shear test of a bonded periodic packing
+(doh-elastic-properties §2.4). Returns a dict: storage_modulus {mean, std, per_orientation: [{orientation,
+storage_modulus, complex_modulus, phase_angle, plate_storage_modulus, broken_bonds, cycle_storage_modulus,
+cycle_phase_angle, samples: {cycle, step, time, phase, strain, stress, plate_stress, region_k, ...},
+cycles: {cycle, strain_amplitude, ..., storage_modulus, ...}}]} [Pa],
+phase_angle [rad], packing (the relaxed structure), seconds. The keywords are the options of the
+command; stiffnesses [N/m] are particle stiffnesses under stiffness_rule "particle" (contacts and
+bonds act with k/2). progress(stage, done, total) is called with the GIL held at most every
+progress_interval seconds.
+
+)doc" + keywords_doc(io::shear_test_options(test_defaults));
   m.def(
       "shear_test",
-      [](const Packing& packing, double normal_stiffness, double shear_stiffness, double normal_strength,
-         double shear_strength, double friction, double damping, double density, const std::string& stiffness_rule,
-         int cycles, double amplitude, long steps_per_cycle, int samples_per_cycle, int plate_layers, int regions,
-         const std::string& orientations, bool relax, long relax_max_steps, int threads, py::object progress,
-         double progress_interval) {
-        OscillatoryShearOptions o = make_options(normal_stiffness, shear_stiffness, normal_strength, shear_strength, friction,
-                                          damping, density, stiffness_rule, cycles, amplitude, steps_per_cycle,
-                                          samples_per_cycle, plate_layers, regions, orientations, relax, relax_max_steps,
-                                          threads);
+      [](const Packing& packing, py::object progress, double progress_interval, const py::kwargs& kwargs) {
+        io::ShearTestRun run;
+        apply_keywords(io::shear_test_options(run), kwargs, "shear_test");
+        OscillatoryShearOptions o = run.test;
+        mechanics::validate(o);
         ProgressCallback callback(progress, progress_interval);
         o.progress = [&](const std::string& stage, long done, long total) { callback.tick(false, stage, done, total); };
         mechanics::OscillatoryShearResult r;
@@ -110,37 +92,30 @@ void bind_oscillatory_shear(py::module_& m) {
           py::gil_scoped_release nogil;
           r = mechanics::run_oscillatory_shear(packing, o);
         }
-        return result_dict(r, regions);
+        return result_dict(r, o.regions);
       },
-      py::arg("packing"), py::kw_only(), py::arg("normal_stiffness") = 100.0, py::arg("shear_stiffness") = 10.0,
-      py::arg("normal_strength") = 1e-4, py::arg("shear_strength") = 1e-6, py::arg("friction") = 0.0,
-      py::arg("damping") = 0.9, py::arg("density") = 3690.0, py::arg("stiffness_rule") = "particle",
-      py::arg("cycles") = 10, py::arg("amplitude") = 1e-3, py::arg("steps_per_cycle") = 20000,
-      py::arg("samples_per_cycle") = 40, py::arg("plate_layers") = 3, py::arg("regions") = 3,
-      py::arg("orientations") = "all", py::arg("relax") = true, py::arg("relax_max_steps") = 100000,
-      py::arg("threads") = 1, py::arg("progress") = py::none(), py::arg("progress_interval") = 0.5, R"doc(
-`packlab test shear` from Python: the oscillatory shear test of a bonded periodic packing
-(doh-elastic-properties §2.4). Returns a dict: storage_modulus {mean, std, per_orientation: [{orientation,
-storage_modulus, complex_modulus, phase_angle, plate_storage_modulus, broken_bonds, cycle_storage_modulus,
-cycle_phase_angle, samples: {cycle, step, time, phase, strain, stress, plate_stress, region_k, ...},
-cycles: {cycle, strain_amplitude, ..., storage_modulus, ...}}]} [Pa],
-phase_angle [rad], packing (the relaxed structure), seconds. Keywords as the command-line options;
-stiffnesses [N/m] are particle stiffnesses under stiffness_rule "particle" (contacts and bonds act with k/2).
-progress(stage, done, total) is called with the GIL held at most every progress_interval seconds.
-)doc");
+      py::arg("packing"), py::kw_only(), py::arg("progress") = py::none(), py::arg("progress_interval") = 0.5,
+      shear_doc.c_str());
 
+  io::ShearCalibrationRun calibration_defaults;
+  static const std::string calibrate_doc = R"doc(
+`packlab calibrate shear` from Python: the particle normal stiffness k_n [N/m] (k_s following at the
+ratio shear_stiffness / normal_stiffness) for which the mean storage modulus equals
+target_storage_modulus [Pa]; Newton with a finite-difference derivative. Returns a dict
+(normal_stiffness, shear_stiffness, storage_modulus, converged, iterations, evaluations, reason,
+tried_*).
+
+)doc" + keywords_doc(io::shear_calibration_options(calibration_defaults));
   m.def(
       "calibrate_shear",
-      [](const Packing& packing, double target, double normal_stiffness, double shear_stiffness, double damping,
-         double density, const std::string& stiffness_rule, int cycles, double amplitude, long steps_per_cycle,
-         const std::string& orientations, double tolerance, int threads) {
-        OscillatoryShearOptions o = make_options(normal_stiffness, shear_stiffness, 1e-4, 1e-6, 0.0, damping, density,
-                                          stiffness_rule, cycles, amplitude, steps_per_cycle, 40, 3, 3, orientations,
-                                          true, 100000, threads);
+      [](const Packing& packing, const py::kwargs& kwargs) {
+        io::ShearCalibrationRun run;
+        apply_keywords(io::shear_calibration_options(run), kwargs, "calibrate_shear").validate();
         mechanics::ShearCalibrationResult r;
         {
           py::gil_scoped_release nogil;
-          r = mechanics::calibrate_normal_stiffness(packing, target, o, tolerance);
+          r = mechanics::calibrate_normal_stiffness(packing, run.target_storage_modulus, run.test, run.tolerance,
+                                                    static_cast<int>(run.max_iterations));
         }
         py::dict d;
         d["normal_stiffness"] = r.normal_stiffness;
@@ -154,16 +129,7 @@ progress(stage, done, total) is called with the GIL held at most every progress_
         d["tried_storage_modulus"] = to_numpy(std::vector<double>(r.tried_storage_modulus));
         return d;
       },
-      py::arg("packing"), py::arg("target"), py::kw_only(), py::arg("normal_stiffness") = 100.0,
-      py::arg("shear_stiffness") = 10.0, py::arg("damping") = 0.9, py::arg("density") = 3690.0,
-      py::arg("stiffness_rule") = "particle", py::arg("cycles") = 10, py::arg("amplitude") = 1e-3,
-      py::arg("steps_per_cycle") = 20000, py::arg("orientations") = "all", py::arg("tolerance") = 0.005,
-      py::arg("threads") = 1, R"doc(
-`packlab calibrate shear` from Python: the particle normal stiffness k_n [N/m] (k_s following at the
-ratio shear_stiffness / normal_stiffness) for which the mean storage modulus equals `target` [Pa];
-Newton with a finite-difference derivative. Returns a dict (normal_stiffness, shear_stiffness,
-storage_modulus, converged, iterations, evaluations, reason, tried_*).
-)doc");
+      py::arg("packing"), calibrate_doc.c_str());
 }
 
 }  // namespace packlab::python

@@ -1,4 +1,4 @@
-// packlab.compress / packlab.calibrate_compress / packlab.fit_porosity_law: the uniaxial
+// packlab.compression_test / packlab.calibrate_compress / packlab.fit_porosity_law: the uniaxial
 // compression test of a bonded model (mechanics/uniaxial_compression.hpp), its calibration
 // (mechanics/compression_calibration.hpp, eq. 18-20) and the porosity laws (analyze/porosity_laws.hpp) from Python.
 #include <fmt/format.h>
@@ -11,6 +11,7 @@
 #include "packlab/analyze/porosity_laws.hpp"
 #include "packlab/core/error.hpp"
 #include "packlab/core/packing.hpp"
+#include "packlab/io/options.hpp"
 #include "packlab/mechanics/compression_calibration.hpp"
 #include "packlab/mechanics/opal_materials.hpp"
 #include "packlab/mechanics/uniaxial_compression.hpp"
@@ -19,44 +20,18 @@ namespace packlab::python {
 
 namespace {
 
-// The keywords shared by packlab.compress and packlab.calibrate_compress (the flags of
-// `packlab test compress`), as the command line resolves them: UniaxialCompressionSetup::finish fixes
-// the automatic strain rate from the starting bond modulus.
-mechanics::UniaxialCompressionSetup make_setup(const Packing& model, double bond_youngs_modulus, double bond_poisson,
-                                       double bond_strength, double density, double titania_youngs_modulus,
-                                       double titania_poisson, double titania_strength, double strain_rate,
-                                       double quasi_static, double max_strain, double stop_drop,
-                                       const std::string& sides, double substrate_layers, double damping,
-                                       double time_step, long samples, std::vector<double> snapshot_strains,
-                                       int threads) {
-  mechanics::UniaxialCompressionSetup s;
-  s.materials.silica_youngs_modulus = bond_youngs_modulus;
-  s.materials.silica_poisson_ratio = bond_poisson;
-  s.materials.silica_strength = bond_strength;
-  s.materials.silica_density = density;
-  s.materials.titania_youngs_modulus = titania_youngs_modulus;
-  s.materials.titania_poisson_ratio = titania_poisson;
-  s.materials.titania_strength = titania_strength;
-  s.materials.damping = damping;
-  s.strain_rate = strain_rate;
-  s.quasi_static = quasi_static;
-  s.options.max_strain = max_strain;
-  s.options.stop_drop = stop_drop;
-  s.options.sides = sides;
-  s.options.substrate_layers = substrate_layers;
-  s.options.time_step = time_step;
-  s.options.samples = samples;
-  s.options.threads = threads;
-  s.snapshot_strains = std::move(snapshot_strains);
+// The set-up of a run as the command line resolves it: UniaxialCompressionSetup::finish fixes the
+// automatic strain rate from the starting bond modulus.
+void finish_setup(mechanics::UniaxialCompressionSetup& s, const Packing& model) {
   s.finish(model);
-  return s;
+  s.options.validate();
 }
 
 }  // namespace
 
 void bind_uniaxial_compression(py::module_& m) {
   using mechanics::UniaxialCompressionResult;
-  py::class_<UniaxialCompressionResult>(m, "UniaxialCompressionResult", "Result of packlab.compress (SI units).")
+  py::class_<UniaxialCompressionResult>(m, "UniaxialCompressionResult", "Result of packlab.compression_test (SI units).")
       .def_readonly("youngs_modulus", &UniaxialCompressionResult::youngs_modulus, "Young's modulus (max-tangent fit) [Pa]")
       .def_readonly("strength", &UniaxialCompressionResult::strength, "Peak stress [Pa]")
       .def_readonly("strain_at_peak", &UniaxialCompressionResult::strain_at_peak)
@@ -123,30 +98,8 @@ void bind_uniaxial_compression(py::module_& m) {
                            r.strength, r.broken_bonds);
       });
 
-  m.def(
-      "compress",
-      [](const Packing& model, double bond_youngs_modulus, double bond_poisson, double bond_strength, double density,
-         double titania_youngs_modulus, double titania_poisson, double titania_strength, double strain_rate,
-         double quasi_static, double max_strain, double stop_drop, const std::string& sides, double substrate_layers,
-         double damping, double time_step, long samples, std::vector<double> snapshot_strains, int threads,
-         py::object progress, double progress_interval) {
-        mechanics::UniaxialCompressionSetup s =
-            make_setup(model, bond_youngs_modulus, bond_poisson, bond_strength, density, titania_youngs_modulus,
-                       titania_poisson, titania_strength, strain_rate, quasi_static, max_strain, stop_drop, sides,
-                       substrate_layers, damping, time_step, samples, std::move(snapshot_strains), threads);
-        ProgressCallback callback(progress, progress_interval);
-        if (!progress.is_none())
-          s.options.on_point = [&](const mechanics::UniaxialCompressionPoint& p) { callback.tick(false, p.strain, p.stress); };
-        py::gil_scoped_release nogil;
-        return mechanics::run_uniaxial_compression(model, s.options);
-      },
-      py::arg("model"), py::kw_only(), py::arg("bond_youngs_modulus") = 6.53e9, py::arg("bond_poisson") = 0.17,
-      py::arg("bond_strength") = 94.3e6, py::arg("density") = 1297.0, py::arg("titania_youngs_modulus") = 17.89e9,
-      py::arg("titania_poisson") = 0.28, py::arg("titania_strength") = 834e6, py::arg("strain_rate") = 0.0,
-      py::arg("quasi_static") = 1e-4, py::arg("max_strain") = 0.05, py::arg("stop_drop") = 0.6,
-      py::arg("sides") = "periodic", py::arg("substrate_layers") = 2.0, py::arg("damping") = 0.7,
-      py::arg("time_step") = 0.0, py::arg("samples") = 400, py::arg("snapshot_strains") = std::vector<double>{},
-      py::arg("threads") = 1, py::arg("progress") = py::none(), py::arg("progress_interval") = 0.5, R"doc(
+  mechanics::UniaxialCompressionSetup test_defaults;
+  static const std::string test_doc = R"doc(
 `packlab test compress` from Python: uniaxial compression of a bonded model (bonds in
 model.bonds, e.g. from packlab.add_bonds or a .vtu of `packlab bond` / `packlab build opal`) by
 a plate moving down at strain_rate [1/s] (0 = automatic: quasi_static strain per elastic-wave
@@ -154,22 +107,50 @@ transit). Silica = bond material 0 (and particle types structural/substrate), ti
 material 1 (coating particles). Returns a UniaxialCompressionResult (youngs_modulus, strength [Pa],
 curve, snapshots, breaks, model). The GIL is released while it runs; progress(strain, stress)
 is called at most every progress_interval seconds.
-)doc");
 
+)doc" + keywords_doc(io::compression_test_options(test_defaults));
+  m.def(
+      "compression_test",
+      [](const Packing& model, py::object progress, double progress_interval, const py::kwargs& kwargs) {
+        mechanics::UniaxialCompressionSetup s;
+        apply_keywords(io::compression_test_options(s), kwargs, "compression_test");
+        finish_setup(s, model);
+        ProgressCallback callback(progress, progress_interval);
+        if (!progress.is_none())
+          s.options.on_point = [&](const mechanics::UniaxialCompressionPoint& p) { callback.tick(false, p.strain, p.stress); };
+        py::gil_scoped_release nogil;
+        return mechanics::run_uniaxial_compression(model, s.options);
+      },
+      py::arg("model"), py::kw_only(), py::arg("progress") = py::none(), py::arg("progress_interval") = 0.5,
+      test_doc.c_str());
+
+  io::CompressionCalibrationRun calibration_defaults;
+  static const std::string calibrate_doc = R"doc(
+`packlab calibrate compress` from Python (bpm-inverse-opals eq. 18-20). With the targets:
+Newton steps on the silica bond Young's modulus E_b and strength sigma_max (= tau_max), starting
+from bond_youngs_modulus and bond_strength, with finite-difference derivatives (relative_step),
+until the compression test gives target_youngs_modulus and target_strength [Pa] within
+tolerance (relative); the paper's diagonal scheme unless full_jacobian. With bulk_factor=True
+(a pore-free sample): one test, K_E = E_macro / E_b. The other keywords are those of
+packlab.compression_test (the automatic strain rate is fixed by the starting E_b, as on the
+command line). Returns a dict: mode, bond_youngs_modulus, bond_strength, youngs_modulus,
+strength, final (the UniaxialCompressionResult of the result's parameters); calibration:
+converged, reason, iterations, simulations, history {bond_youngs_modulus, bond_strength,
+youngs_modulus, strength, finite_difference, evaluation} (every simulation in order); bulk factor:
+bulk_factor, strength_ratio (E_macro / strength), strength_factor (strength / sigma_max). A
+calibration that does not converge returns converged=False. progress(run, E_b, sigma_max, E,
+strength) is called after each simulation.
+
+)doc" + keywords_doc(io::compression_calibration_options(calibration_defaults));
   m.def(
       "calibrate_compress",
-      [](const Packing& model, double target_youngs_modulus, double target_strength, bool bulk_factor,
-         double tolerance, int max_iterations, double relative_step, bool full_jacobian, double bond_youngs_modulus,
-         double bond_poisson, double bond_strength, double density, double titania_youngs_modulus,
-         double titania_poisson, double titania_strength, double strain_rate, double quasi_static, double max_strain,
-         double stop_drop, const std::string& sides, double substrate_layers, double damping, double time_step,
-         long samples, int threads, py::object progress) {
-        mechanics::UniaxialCompressionSetup s =
-            make_setup(model, bond_youngs_modulus, bond_poisson, bond_strength, density, titania_youngs_modulus,
-                       titania_poisson, titania_strength, strain_rate, quasi_static, max_strain, stop_drop, sides,
-                       substrate_layers, damping, time_step, samples, {}, threads);
+      [](const Packing& model, py::object progress, const py::kwargs& kwargs) {
+        io::CompressionCalibrationRun run;
+        apply_keywords(io::compression_calibration_options(run), kwargs, "calibrate_compress").validate();
+        mechanics::UniaxialCompressionSetup& s = run.setup;
+        finish_setup(s, model);
         py::dict d;
-        if (bulk_factor) {
+        if (run.bulk_factor) {
           mechanics::BulkFactorResult b;
           {
             py::gil_scoped_release nogil;
@@ -186,20 +167,17 @@ is called at most every progress_interval seconds.
           d["final"] = py::cast(std::move(b.run));
           return d;
         }
-        mechanics::CalibrationOptions o;
-        o.tolerance = tolerance;
-        o.max_iterations = max_iterations;
-        o.relative_step = relative_step;
-        o.diagonal = !full_jacobian;
-        auto on_run = [&](int run, const std::vector<double>& p, const mechanics::UniaxialCompressionResult& r) {
+        run.calibration.diagonal = !run.full_jacobian;
+        auto on_run = [&](int simulation, const std::vector<double>& p, const mechanics::UniaxialCompressionResult& r) {
           if (progress.is_none()) return;
           py::gil_scoped_acquire gil;
-          progress(run, p[0], p[1], r.youngs_modulus, r.strength);
+          progress(simulation, p[0], p[1], r.youngs_modulus, r.strength);
         };
         mechanics::CompressionCalibrationResult result;
         {
           py::gil_scoped_release nogil;
-          result = mechanics::calibrate_compression(model, s, target_youngs_modulus, target_strength, o, on_run);
+          result = mechanics::calibrate_compression(model, s, run.target_youngs_modulus, run.target_strength,
+                                                    run.calibration, on_run);
         }
         const mechanics::CalibrationResult& c = result.calibration;
         d["mode"] = "calibrate";
@@ -215,30 +193,7 @@ is called at most every progress_interval seconds.
         d["final"] = result.has_final ? py::cast(std::move(result.final)) : py::object(py::none());
         return d;
       },
-      py::arg("model"), py::kw_only(), py::arg("target_youngs_modulus") = 0.0, py::arg("target_strength") = 0.0,
-      py::arg("bulk_factor") = false, py::arg("tolerance") = 0.005, py::arg("max_iterations") = 20,
-      py::arg("relative_step") = 0.05, py::arg("full_jacobian") = false, py::arg("bond_youngs_modulus") = 6.53e9,
-      py::arg("bond_poisson") = 0.17, py::arg("bond_strength") = 94.3e6, py::arg("density") = 1297.0,
-      py::arg("titania_youngs_modulus") = 17.89e9, py::arg("titania_poisson") = 0.28,
-      py::arg("titania_strength") = 834e6, py::arg("strain_rate") = 0.0, py::arg("quasi_static") = 1e-4,
-      py::arg("max_strain") = 0.05, py::arg("stop_drop") = 0.6, py::arg("sides") = "periodic",
-      py::arg("substrate_layers") = 2.0, py::arg("damping") = 0.7, py::arg("time_step") = 0.0,
-      py::arg("samples") = 400, py::arg("threads") = 1, py::arg("progress") = py::none(), R"doc(
-`packlab calibrate compress` from Python (bpm-inverse-opals eq. 18-20). With the targets:
-Newton steps on the silica bond Young's modulus E_b and strength sigma_max (= tau_max), starting
-from bond_youngs_modulus and bond_strength, with finite-difference derivatives (relative_step),
-until the compression test gives target_youngs_modulus and target_strength [Pa] within
-tolerance (relative); the paper's diagonal scheme unless full_jacobian. With bulk_factor=True
-(a pore-free sample): one test, K_E = E_macro / E_b. The other keywords are those of
-packlab.compress (the automatic strain rate is fixed by the starting E_b, as on the command line).
-Returns a dict: mode, bond_youngs_modulus, bond_strength, youngs_modulus, strength, final
-(the UniaxialCompressionResult of the result's parameters); calibration: converged, reason, iterations,
-simulations, history {bond_youngs_modulus, bond_strength, youngs_modulus, strength,
-finite_difference, evaluation} (every simulation in order); bulk factor: bulk_factor, strength_ratio
-(E_macro / strength), strength_factor (strength / sigma_max). A calibration that does not
-converge returns converged=False. progress(run, E_b, sigma_max, E, strength) is called after
-each simulation.
-)doc");
+      py::arg("model"), py::kw_only(), py::arg("progress") = py::none(), calibrate_doc.c_str());
 
   using analyze::PorosityFit;
   py::class_<PorosityFit>(m, "PorosityFit", "Fit of a porosity law (eq. 22-26).")

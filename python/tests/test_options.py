@@ -20,10 +20,14 @@ PORTED = [
     ("relax", "relax", (packlab.generate_lattice(),)),
     ("shake", "shake", (packlab.generate_lattice(),)),
     ("bond", "bond", (packlab.generate_lattice(),)),
+    ("test shear", "shear_test", (packlab.generate_lattice(),)),
+    ("calibrate shear", "calibrate_shear", (packlab.generate_lattice(),)),
+    ("test compress", "compression_test", (packlab.generate_lattice(),)),
+    ("calibrate compress", "calibrate_compress", (packlab.generate_lattice(),)),
 ]
 
 # Flags that steer the run rather than set an option (input, output, resuming, verbosity).
-RUN_CONTROL = {"--help", "--config", "--out", "--resume", "--no-plots", "--check", "--quiet", "--log"}
+RUN_CONTROL = {"--help", "--config", "--out", "--resume", "--no-plots", "--no-vtu", "--check", "--quiet", "--log"}
 
 
 def section(cli, command):

@@ -65,7 +65,7 @@ def test_bad_orientation_is_a_value_error():
 
 
 def test_calibrate_shear_recovers_the_stiffness():
-    r = packlab.calibrate_shear(sc_lattice(), sc_modulus(12.0), orientations="z:x", stiffness_rule="contact",
+    r = packlab.calibrate_shear(sc_lattice(), target_storage_modulus=sc_modulus(12.0), orientations="z:x", stiffness_rule="contact",
                                 cycles=1, steps_per_cycle=4000, tolerance=0.002)
     assert r["converged"]
     assert r["normal_stiffness"] == pytest.approx(120.0, rel=0.01)

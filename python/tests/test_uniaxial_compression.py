@@ -1,4 +1,4 @@
-"""packlab.compress and packlab.fit_porosity_law: the compression test from Python (same
+"""packlab.compression_test and packlab.fit_porosity_law: the compression test from Python (same
 physics as `packlab test compress`) and the porosity laws of bpm-inverse-opals eq. 22-26."""
 
 import math
@@ -38,7 +38,7 @@ def test_glued_plate_gives_the_closed_form_modulus_of_a_simple_cubic_column():
     g = E / (2 * (1 + NU))
     m = math.pi / 4 * (E + math.sqrt(2) * (E + g) + 4 * (E + 2 * g) / (3 * math.sqrt(3)))
     calls = []
-    r = packlab.compress(sc_column(), bond_strength=math.inf, strain_rate=1e6, max_strain=0.003, samples=50,
+    r = packlab.compression_test(sc_column(), bond_strength=math.inf, strain_rate=1e6, max_strain=0.003, samples=50,
                          snapshot_strains=[0.002], progress=lambda strain, stress: calls.append(strain),
                          progress_interval=0.0)
     assert r.youngs_modulus == pytest.approx(m, rel=2e-3)
@@ -57,9 +57,9 @@ def test_glued_plate_gives_the_closed_form_modulus_of_a_simple_cubic_column():
 
 def test_bad_keyword_values_raise_value_errors():
     with pytest.raises(ValueError, match="sides"):
-        packlab.compress(sc_column(4), sides="closed")
+        packlab.compression_test(sc_column(4), sides="closed")
     with pytest.raises(ValueError, match="strain_rate"):
-        packlab.compress(sc_column(4), strain_rate=-1.0)
+        packlab.compression_test(sc_column(4), strain_rate=-1.0)
 
 
 def test_porosity_fits_recover_m_and_b():

@@ -1,6 +1,6 @@
 """packlab.calibrate_compress: `packlab calibrate compress` from Python (bpm-inverse-opals
 eq. 18-20) on a tiny pore-free force-biased sample: Newton recovers bond values that produced
-the targets, the bulk factor is E / E_b of one packlab.compress run and equals the command line's."""
+the targets, the bulk factor is E / E_b of one packlab.compression_test run and equals the command line's."""
 
 import json
 
@@ -23,7 +23,7 @@ def sample():
 
 def test_newton_recovers_the_bond_values_of_the_targets(sample):
     e_b, s_max = 8.0e9, 120e6
-    ref = packlab.compress(sample, bond_youngs_modulus=e_b, bond_strength=s_max, **TEST)
+    ref = packlab.compression_test(sample, bond_youngs_modulus=e_b, bond_strength=s_max, **TEST)
     assert ref.broken_bonds > 0  # the peak is a failure, not the end of the run
     seen = []
     r = packlab.calibrate_compress(sample, target_youngs_modulus=ref.youngs_modulus, target_strength=ref.strength,
@@ -44,7 +44,7 @@ def test_newton_recovers_the_bond_values_of_the_targets(sample):
 
 def test_bulk_factor_is_one_compression_and_matches_the_command_line(sample, cli, tmp_path):
     b = packlab.calibrate_compress(sample, bulk_factor=True, **TEST)
-    one = packlab.compress(sample, **TEST)
+    one = packlab.compression_test(sample, **TEST)
     assert b["mode"] == "bulk_factor"
     assert b["youngs_modulus"] == one.youngs_modulus and b["strength"] == one.strength  # deterministic
     assert b["bulk_factor"] == pytest.approx(one.youngs_modulus / 6.53e9, rel=1e-12)

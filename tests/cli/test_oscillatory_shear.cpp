@@ -67,7 +67,7 @@ TEST(OscillatoryShearCli, ConfigFileIsReadAndFlagsOverrideIt) {
   ASSERT_EQ(r.exit_code, 0) << r.output;
   const auto j = read_json(dir.file("out/report.json"));
   EXPECT_EQ(j["parameters"]["cycles"], 1);
-  EXPECT_DOUBLE_EQ(j["parameters"]["shear_stiffness"].get<double>(), 10.0);
+  EXPECT_DOUBLE_EQ(j["parameters"]["shear_stiffness_N_per_m"].get<double>(), 10.0);
   EXPECT_NEAR(j["storage_modulus"]["mean"].get<double>(), sc_modulus(10.0), 0.01 * sc_modulus(10.0));
 }
 
@@ -94,7 +94,7 @@ TEST(OscillatoryShearCli, BadInputStopsWithOneLineAndExitCode2) {
     std::string args, key;
   };
   const std::vector<Case> cases = {
-      {"test shear " + model + " --orientations w --out " + dir.file("o1"), "--orientations"},
+      {"test shear " + model + " --orientations w --out " + dir.file("o1"), "orientations"},
       {"test shear " + model + " --amplitude -1 --out " + dir.file("o2"), "amplitude"},
       {"test shear " + model + " --steps-per-cycle 1001 --out " + dir.file("o3"), "steps_per_cycle"},
       {"test shear " + dir.file("sc.xyz") + " --out " + dir.file("o4"), "no intact bond"},

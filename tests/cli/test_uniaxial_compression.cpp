@@ -29,8 +29,8 @@ TEST(UniaxialCompressionCli, LatticeReportAndCurves) {
   const std::string model = bonded_lattice(dir);
   const std::string out = dir.file("run");
   const auto r = run_packlab("test compress " + model + " --out " + out +
-                             " --bond-youngs-modulus 6.53e9 --bond-poisson 0.17 --bond-strength 94.3e6"
-                             " --compressive-breakage true --strain-rate 4e6 --max-strain 0.03 --snapshot-strains 0.005,0.01"
+                             " --bond-youngs-modulus 6.53e9 --bond-poisson-ratio 0.17 --bond-strength 94.3e6"
+                             " --bond-compressive-breakage --strain-rate 4e6 --max-strain 0.03 --snapshot-strains 0.005,0.01"
                              " --threads 1 --no-plots --quiet");
   ASSERT_EQ(r.exit_code, 0) << r.output;
   std::ifstream in(out + "/report.json");
@@ -51,22 +51,24 @@ TEST(UniaxialCompressionCli, ConfigFileAndFlagsOverride) {
   const std::string model = bonded_lattice(dir);
   {
     std::ofstream cfg(dir.file("c.toml"));
-    cfg << "[silica]\nyoungs_modulus = 1e9\nstrength = 1e30\n[test]\nmax_strain = 0.002\nstrain_rate = 4e6\n";
+    cfg << "max_strain = 0.002\nstrain_rate = 4e6\n[silica]\nyoungs_modulus = 1e9\nstrength = 1e30\n";
   }
   const auto r = run_packlab("test compress " + model + " --config " + dir.file("c.toml") + " --out " + dir.file("a") +
                              " --bond-youngs-modulus 2e9 --threads 1 --no-plots --no-vtu --quiet");
   ASSERT_EQ(r.exit_code, 0) << r.output;
   std::ifstream in(dir.file("a") + "/report.json");
   const nlohmann::json report = nlohmann::json::parse(in);
-  EXPECT_EQ(report.at("materials").at("silica").at("youngs_modulus").get<double>(), 2e9);  // the flag wins
-  EXPECT_EQ(report.at("max_strain").get<double>(), 0.002);                                   // from the file
+  const nlohmann::json& parameters = report.at("parameters");
+  EXPECT_EQ(parameters.at("silica").at("youngs_modulus_Pa").get<double>(), 2e9);  // the flag wins
+  EXPECT_EQ(parameters.at("max_strain").get<double>(), 0.002);                   // from the file
+  EXPECT_EQ(report.at("max_strain").get<double>(), 0.002);
   EXPECT_EQ(report.at("broken_bonds").get<long>(), 0);
 }
 
 TEST(UniaxialCompressionCli, BadInputIsOneLineAndExitCode2) {
   TempDir dir("compress-cli-bad");
   const std::string model = bonded_lattice(dir);
-  for (const std::string args : {" --strain-rate -1", " --sides closed", " --max-strain 2", " --bond-poisson 0.7"}) {
+  for (const std::string args : {" --strain-rate -1", " --sides closed", " --max-strain 2", " --bond-poisson-ratio 0.7"}) {
     const auto r = run_packlab("test compress " + model + " --out " + dir.file("x") + args + " --quiet");
     EXPECT_EQ(r.exit_code, 2) << args << ": " << r.output;
     EXPECT_LE(std::count(r.output.begin(), r.output.end(), '\n'), 1) << r.output;

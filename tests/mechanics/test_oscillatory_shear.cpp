@@ -46,7 +46,7 @@ OscillatoryShearOptions quick_options(int cycles = 3, const std::string& orienta
   o.cycles = cycles;
   o.steps_per_cycle = 4000;
   o.samples_per_cycle = 40;
-  o.orientations = shear_orientations(orientations);
+  o.orientations = orientations;
   o.threads = 1;
   return o;
 }
@@ -139,7 +139,7 @@ TEST(OscillatoryShear, SimpleCubicNetworkMatchesTheSpringNetworkClosedForm) {
   EXPECT_LT(r.storage_modulus_std, 1e-3 * expected);  // cubic symmetry: the six agree
   // Under the particle rule the same numbers are particle stiffnesses: springs in series, k/2.
   o.stiffness_rule = "particle";
-  o.orientations = shear_orientations("z:x");
+  o.orientations = "z:x";
   const OscillatoryShearResult half = run_oscillatory_shear(sc, o);
   EXPECT_NEAR(half.storage_modulus_mean, 0.5 * expected, 0.01 * expected);
 }

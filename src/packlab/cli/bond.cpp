@@ -24,7 +24,7 @@ std::string bond_config_reference() {
 
 void add_bond(CLI::App& app) {
   struct Options {
-    std::string in, out, config;
+    std::string in, out;
     io::BondOptions o;
     std::unique_ptr<OptionFlags> flags;
     bool quiet = false;
@@ -34,12 +34,10 @@ void add_bond(CLI::App& app) {
       "bond", "Bond every pair closer than a cutoff (contact bonds of touching pairs, or elastic bonds within 1.75 d)");
   cmd->add_option("in", opt->in, "Input packing (any readable format)")->required();
   cmd->add_option("--out", opt->out, "Output bonded model (.vtu: the format that stores bonds)")->required();
-  cmd->add_option("--config", opt->config, "TOML file with any of the options; flags override it");
   opt->flags = std::make_unique<OptionFlags>(cmd, io::bond_options(opt->o));
   cmd->add_flag("--quiet", opt->quiet, "No output");
   cmd->callback([opt] {
-    if (!opt->config.empty()) opt->flags->schema().read_file(opt->config);
-    opt->flags->apply();
+    opt->flags->load();
     opt->flags->schema().validate();
     if (io::format_from_path(opt->out) != io::Format::vtu)
       fail_input("--out = " + opt->out + ": must end in .vtu (the format that stores bonds)");

@@ -34,7 +34,7 @@ std::string opal_config_reference() {
 
 void add_build_opal(CLI::App& build) {
   struct Options {
-    std::string in, out, config;
+    std::string in, out;
     io::OpalBuildOptions o;
     std::unique_ptr<OptionFlags> flags;
     bool quiet = false;
@@ -44,14 +44,12 @@ void add_build_opal(CLI::App& build) {
       "opal", "Inverse-opal bonded-particle model: pores (FCC or random), coating, fixed substrate, bonds "
               "(bpm-inverse-opals §2.1)");
   cmd->add_option("in", opt->in, "Input particle packing (any readable format; e.g. from generate fba)")->required();
-  cmd->add_option("--config", opt->config, "TOML file with any of the options; flags override it");
   opt->flags = std::make_unique<OptionFlags>(cmd, io::opal_build_options(opt->o));
   cmd->add_option("--out", opt->out, "Output folder")->required();
   cmd->add_flag("--quiet", opt->quiet, "No output");
   cmd->callback([opt] {
     const auto t0 = std::chrono::steady_clock::now();
-    if (!opt->config.empty()) opt->flags->schema().read_file(opt->config);
-    opt->flags->apply();
+    opt->flags->load();
     const Packing in = io::read_packing(opt->in);
     nlohmann::json pore_params;
     const generate::OpalOptions o = opt->o.resolve(in, &pore_params);

@@ -1,5 +1,5 @@
-// packlab calibrate compress IN --target-youngs-modulus E --target-strength S --out DIR [compression flags]
-// packlab calibrate compress IN --bulk-factor --out DIR [compression flags]
+// packlab calibrate compress IN --target-youngs-modulus E --target-strength S --out DIR [options of test compress]
+// packlab calibrate compress IN --bulk-factor --out DIR [options of test compress]
 // 1. Newton iteration with finite-difference derivatives (bpm-inverse-opals eq. 18-19,
 //    mechanics/calibration.hpp) on the silica bond Young's modulus E_b and strength sigma_max
 //    (= tau_max) until the compression test gives the target E* and strength to --tolerance
@@ -16,22 +16,17 @@
 #include <memory>
 
 #include "packlab/cli/commands.hpp"
+#include "packlab/cli/options.hpp"
 #include "packlab/cli/uniaxial_compression_output.hpp"
 #include "packlab/core/error.hpp"
 #include "packlab/io/atomic_file.hpp"
+#include "packlab/io/options.hpp"
 #include "packlab/io/packing_io.hpp"
 #include "packlab/io/report.hpp"
 #include "packlab/io/table.hpp"
 #include "packlab/mechanics/compression_calibration.hpp"
 
 namespace packlab::cli {
-
-// Defined in uniaxial_compression.cpp: the flags and config keys of a compression run.
-struct CompressFlags;
-std::shared_ptr<CompressFlags> add_compression_flags(CLI::App* cmd);
-mechanics::UniaxialCompressionSetup resolve_compression_settings(CLI::App* cmd, const CompressFlags& f, const std::string& config,
-                                                         const Packing& model);
-using CompressSettings = mechanics::UniaxialCompressionSetup;
 
 namespace {
 
@@ -48,40 +43,44 @@ nlohmann::json history_json(const mechanics::CalibrationResult& c) {
 
 }  // namespace
 
+std::string compress_calibration_config_reference() {
+  io::CompressionCalibrationRun r;
+  return io::compression_calibration_options(r).markdown();
+}
+
 void add_calibrate_compress(CLI::App& calibrate) {
   struct Options {
-    std::string in, out, config;
-    double target_e = 0.0, target_strength = 0.0;
-    bool bulk_factor = false, full_jacobian = false, quiet = false, no_plots = false;
-    mechanics::CalibrationOptions calibration;
-    std::shared_ptr<CompressFlags> flags;
+    std::string in, out;
+    io::CompressionCalibrationRun run;
+    std::unique_ptr<OptionFlags> flags;
+    bool quiet = false, no_plots = false;
   };
   auto opt = std::make_shared<Options>();
   auto* cmd = calibrate.add_subcommand(
       "compress", "Calibrate bond Young's modulus and strength to a target (eq. 18-19), or the bulk factor K_E (eq. 20)");
   cmd->add_option("in", opt->in, "Bonded model (.vtu)")->required();
   cmd->add_option("--out", opt->out, "Output folder")->required();
-  cmd->add_option("--config", opt->config, "TOML file with any compression setting; flags override it");
-  cmd->add_option("--target-youngs-modulus", opt->target_e, "Target Young's modulus E* of the sample [Pa]");
-  cmd->add_option("--target-strength", opt->target_strength, "Target compressive strength of the sample [Pa]");
-  cmd->add_flag("--bulk-factor", opt->bulk_factor,
-                "Pore-free sample: report K_E = E_macro / E_b and E_macro / strength instead of calibrating");
-  cmd->add_option("--tolerance", opt->calibration.tolerance, "Relative tolerance per response")->capture_default_str();
-  cmd->add_option("--max-iterations", opt->calibration.max_iterations, "Newton iterations at most")->capture_default_str();
-  cmd->add_option("--relative-step", opt->calibration.relative_step, "Finite-difference step / parameter (eq. 19)")
-      ->capture_default_str();
-  cmd->add_flag("--full-jacobian", opt->full_jacobian,
-                "Use every finite-difference derivative (default: E from E_b and strength from sigma_max only, as the paper)");
-  opt->flags = add_compression_flags(cmd);
+  opt->flags = std::make_unique<OptionFlags>(cmd, io::compression_calibration_options(opt->run));
   cmd->add_flag("--no-plots", opt->no_plots, "Do not make PNG plots");
   cmd->add_flag("--quiet", opt->quiet, "No progress output");
-  cmd->callback([opt, cmd] {
+  cmd->callback([opt] {
+    opt->flags->load();
+    opt->flags->schema().validate();
+    io::CompressionCalibrationRun& run = opt->run;
     const Packing model = io::read_packing(opt->in);
-    CompressSettings s = resolve_compression_settings(cmd, *opt->flags, opt->config, model);
+    mechanics::UniaxialCompressionSetup& s = run.setup;
+    s.finish(model);
+    s.options.validate();
+    if (!run.bulk_factor) {
+      require(run.target_youngs_modulus > 0.0, "--target-youngs-modulus", run.target_youngs_modulus,
+              "> 0 Pa (or use --bulk-factor)");
+      require(run.target_strength > 0.0, "--target-strength", run.target_strength, "> 0 Pa");
+    }
     const std::filesystem::path dir = opt->out;
+    io::ensure_directory(dir);
     nlohmann::json report = io::report_header("calibrate compress");
     report["input"] = opt->in;
-    if (opt->bulk_factor) {
+    if (run.bulk_factor) {
       const mechanics::BulkFactorResult b = mechanics::compression_bulk_factor(model, s);
       const mechanics::UniaxialCompressionResult& r = b.run;
       write_uniaxial_compression_outputs(r, s.options, dir / "final", !opt->no_plots, false);
@@ -101,27 +100,23 @@ void add_calibrate_compress(CLI::App& calibrate) {
                    r.youngs_modulus * 1e-9, b.bulk_factor, r.strength * 1e-6, b.strength_ratio, b.strength_factor);
       return;
     }
-    require(opt->target_e > 0.0, "--target-youngs-modulus", opt->target_e, "> 0 Pa (or use --bulk-factor)");
-    require(opt->target_strength > 0.0, "--target-strength", opt->target_strength, "> 0 Pa");
-    opt->calibration.diagonal = !opt->full_jacobian;
-    auto on_run = [&](int run, const std::vector<double>& p, const mechanics::UniaxialCompressionResult& r) {
+    run.calibration.diagonal = !run.full_jacobian;
+    auto on_run = [&](int simulation, const std::vector<double>& p, const mechanics::UniaxialCompressionResult& r) {
       if (!opt->quiet)
         fmt::print("run {}: E_b = {:.6g} GPa, sigma_max = {:.6g} MPa -> E = {:.6g} GPa, strength = {:.6g} MPa ({:.1f} s)\n",
-                   run, p[0] * 1e-9, p[1] * 1e-6, r.youngs_modulus * 1e-9, r.strength * 1e-6, r.seconds);
+                   simulation, p[0] * 1e-9, p[1] * 1e-6, r.youngs_modulus * 1e-9, r.strength * 1e-6, r.seconds);
       std::fflush(stdout);
     };
     const mechanics::CompressionCalibrationResult result =
-        mechanics::calibrate_compression(model, s, opt->target_e, opt->target_strength, opt->calibration, on_run);
+        mechanics::calibrate_compression(model, s, run.target_youngs_modulus, run.target_strength, run.calibration,
+                                         on_run);
     const mechanics::CalibrationResult& c = result.calibration;
     const Columns history = mechanics::calibration_history_columns(c);
-    std::filesystem::create_directories(dir);
     io::write_text_atomically(dir / "calibration.csv", io::to_csv(history));
     if (result.has_final)
       write_uniaxial_compression_outputs(result.final, s.options, dir / "final", !opt->no_plots, false);
     report["mode"] = "calibrate";
-    report["targets"] = {{"youngs_modulus", opt->target_e}, {"strength", opt->target_strength}};
-    report["tolerance"] = opt->calibration.tolerance;
-    report["scheme"] = opt->full_jacobian ? "full finite-difference Jacobian" : "diagonal (paper: dE/dsigma = dS/dE_b = 0)";
+    report["scheme"] = run.full_jacobian ? "full finite-difference Jacobian" : "diagonal (paper: dE/dsigma = dS/dE_b = 0)";
     report["converged"] = c.converged;
     report["iterations"] = c.iterations;
     report["simulations"] = c.evaluations;

@@ -1,4 +1,4 @@
-// packlab calibrate shear IN --target-storage-modulus PA [--config FILE] [test shear flags] --out DIR
+// packlab calibrate shear IN --target-storage-modulus PA [--config FILE] [the options of test shear] --out DIR
 // Finds the particle normal stiffness k_n (k_s following at the ratio of the options) for which
 // the mean storage modulus G' of the structure matches the target (doh-elastic-properties §3.1:
 // k_n was calibrated in 50-150 N/m); Newton with a finite-difference derivative
@@ -12,49 +12,47 @@
 #include <sstream>
 
 #include "packlab/cli/commands.hpp"
+#include "packlab/cli/options.hpp"
 #include "packlab/core/error.hpp"
 #include "packlab/io/atomic_file.hpp"
-#include "packlab/io/config.hpp"
+#include "packlab/io/options.hpp"
 #include "packlab/io/packing_io.hpp"
 #include "packlab/io/report.hpp"
 #include "packlab/mechanics/shear_calibration.hpp"
 
 namespace packlab::cli {
 
-// Defined in oscillatory_shear.cpp (the flags and config keys both shear commands share).
-std::function<void(mechanics::OscillatoryShearOptions&, std::string&, bool&)> add_shear_flags(CLI::App* cmd,
-                                                                                       const std::string& command);
-nlohmann::json shear_parameters_json(const mechanics::OscillatoryShearOptions& t, const std::string& orientations);
+std::string shear_calibration_config_reference() {
+  io::ShearCalibrationRun r;
+  return io::shear_calibration_options(r).markdown();
+}
 
 void add_calibrate_shear(CLI::App& calibrate) {
   struct Options {
     std::string in, out;
-    double target = 0.0;
-    double tolerance = 0.005;
-    int max_iterations = 10;
+    io::ShearCalibrationRun run;
+    std::unique_ptr<OptionFlags> flags;
     bool quiet = false;
   };
   auto opt = std::make_shared<Options>();
   auto* cmd = calibrate.add_subcommand(
       "shear", "Calibrate the particle normal stiffness k_n so that the storage modulus G' matches a target");
   cmd->add_option("in", opt->in, "Bonded model (a file with bonds)")->required();
-  cmd->add_option("--target-storage-modulus", opt->target, "Target G' [Pa]")->required();
-  cmd->add_option("--tolerance", opt->tolerance, "Relative tolerance on G'")->capture_default_str();
-  cmd->add_option("--max-iterations", opt->max_iterations, "Newton iterations at most")->capture_default_str();
   cmd->add_option("--out", opt->out, "Output folder")->required();
-  auto apply = add_shear_flags(cmd, "calibrate shear");
+  opt->flags = std::make_unique<OptionFlags>(cmd, io::shear_calibration_options(opt->run));
   cmd->add_flag("--quiet", opt->quiet, "No progress output");
-  cmd->callback([opt, apply] {
-    mechanics::OscillatoryShearOptions options;
-    std::string orientations;
-    bool plots = true;
-    apply(options, orientations, plots);
-    require(opt->target > 0.0 && std::isfinite(opt->target), "--target-storage-modulus", opt->target, "> 0 Pa");
+  cmd->callback([opt] {
+    opt->flags->load();
+    const io::ShearCalibrationRun& run = opt->run;
+    const mechanics::OscillatoryShearOptions& options = run.test;
+    opt->flags->schema().validate();  // the target is required: its default 0 is outside its range
+    mechanics::validate(options);
     const Packing packing = io::read_packing(opt->in);
     const std::filesystem::path dir = opt->out;
     io::ensure_directory(dir);
     const auto result =
-        mechanics::calibrate_normal_stiffness(packing, opt->target, options, opt->tolerance, opt->max_iterations);
+        mechanics::calibrate_normal_stiffness(packing, run.target_storage_modulus, options, run.tolerance,
+                                              static_cast<int>(run.max_iterations));
     std::ostringstream csv;
     csv << "evaluation,normal_stiffness,shear_stiffness,storage_modulus\n";
     const double ratio = options.shear_stiffness / options.normal_stiffness;
@@ -64,9 +62,7 @@ void add_calibrate_shear(CLI::App& calibrate) {
     io::write_text_atomically(dir / "calibration.csv", csv.str());
     nlohmann::json report = io::report_header("calibrate shear");
     report["input"] = opt->in;
-    report["parameters"] = shear_parameters_json(options, orientations);
-    report["target_storage_modulus"] = opt->target;
-    report["tolerance"] = opt->tolerance;
+    report["parameters"] = opt->flags->schema().json();
     report["normal_stiffness"] = result.normal_stiffness;
     report["shear_stiffness"] = result.shear_stiffness;
     report["storage_modulus"] = result.storage_modulus;
@@ -78,7 +74,7 @@ void add_calibrate_shear(CLI::App& calibrate) {
     io::write_report(dir / "report.json", report);
     if (!opt->quiet)
       fmt::print("k_n = {:.6g} N/m (k_s = {:.6g} N/m): G' = {:.6g} Pa for the target {:.6g} Pa; {}\n",
-                 result.normal_stiffness, result.shear_stiffness, result.storage_modulus, opt->target, result.reason);
+                 result.normal_stiffness, result.shear_stiffness, result.storage_modulus, run.target_storage_modulus, result.reason);
     if (!result.converged) fail_input("calibrate shear: " + result.reason);
   });
 }

@@ -45,8 +45,10 @@ std::string relax_config_reference();
 std::string lattice_config_reference();
 std::string random_config_reference();
 std::string bond_config_reference();
-std::string shear_config_reference();     // also read by `calibrate shear`
-std::string compress_config_reference();  // also read by `calibrate compress`
+std::string shear_config_reference();
+std::string shear_calibration_config_reference();
+std::string compress_config_reference();
+std::string compress_calibration_config_reference();
 std::string config_reference();
 void add_config_keys(CLI::App& app);
 

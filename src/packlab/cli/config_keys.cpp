@@ -19,7 +19,8 @@ std::string config_reference() {
   for (const std::string& section :
        {lattice_config_reference(), random_config_reference(), vem_config_reference(), ls_config_reference(),
         scrm_config_reference(), shake_config_reference(), fba_config_reference(), opal_config_reference(),
-        relax_config_reference(), bond_config_reference(), shear_config_reference(), compress_config_reference()})
+        relax_config_reference(), bond_config_reference(), shear_config_reference(),
+        shear_calibration_config_reference(), compress_config_reference(), compress_calibration_config_reference()})
     out += section;
   return out;
 }

@@ -37,21 +37,19 @@ void add_generate_fba(CLI::App& generate) {
   struct Options {
     io::FbaOptions o;
     std::unique_ptr<OptionFlags> flags;
-    std::string out, config;
+    std::string out;
     bool quiet = false, no_plots = false;
   };
   auto opt = std::make_shared<Options>();
   auto* cmd = generate.add_subcommand(
       "fba", "Force-biased algorithm: dense random sphere packing to a target porosity (0.38 in bpm-inverse-opals)");
-  cmd->add_option("--config", opt->config, "TOML file with any of the options; flags override it");
   opt->flags = std::make_unique<OptionFlags>(cmd, io::fba_options(opt->o));
   cmd->add_option("--out", opt->out, "Output folder")->required();
   cmd->add_flag("--no-plots", opt->no_plots, "Do not write PNG plots");
   cmd->add_flag("--quiet", opt->quiet, "No progress output");
   cmd->callback([opt] {
     const auto t0 = std::chrono::steady_clock::now();
-    if (!opt->config.empty()) opt->flags->schema().read_file(opt->config);
-    opt->flags->apply();
+    opt->flags->load();
     const io::FbaOptions& o = opt->o;
     const io::FbaOptions::Setup setup = o.setup();
     opt->flags->schema().validate();

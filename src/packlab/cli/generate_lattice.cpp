@@ -20,18 +20,16 @@ void add_generate_lattice(CLI::App& generate) {
   struct Options {
     io::LatticeOptions o;
     std::unique_ptr<OptionFlags> flags;
-    std::string out, config;
+    std::string out;
     bool quiet = false;
   };
   auto opt = std::make_shared<Options>();
   auto* cmd = generate.add_subcommand("lattice", "Cubic lattice (sc, bcc, fcc) in a matching periodic box");
-  cmd->add_option("--config", opt->config, "TOML file with any of the options; flags override it");
   opt->flags = std::make_unique<OptionFlags>(cmd, io::lattice_options(opt->o));
   cmd->add_option("--out", opt->out, "Output file (format by extension: .xyz .vtu .data .csv .txt)")->required();
   cmd->add_flag("--quiet", opt->quiet, "No progress output");
   cmd->callback([opt] {
-    if (!opt->config.empty()) opt->flags->schema().read_file(opt->config);
-    opt->flags->apply();
+    opt->flags->load();
     const generate::LatticeParams p = opt->o.params();
     const Packing packing = generate::make_lattice(p);
     opt->flags->schema().validate();

@@ -39,7 +39,6 @@ nlohmann::json ls_parameters(const io::LsOptions& o) {
 }
 
 void add_ls_run_options(CLI::App& cmd, LsRunOptions& run, const io::ConfigSchema& method) {
-  cmd.add_option("--config", run.config, "TOML file with any of the options; flags override it");
   io::ConfigSchema all = method;
   all.append(rdf_output_options(method.command(), run.rdf));
   run.flags = std::make_unique<OptionFlags>(&cmd, std::move(all));
@@ -49,8 +48,7 @@ void add_ls_run_options(CLI::App& cmd, LsRunOptions& run, const io::ConfigSchema
 }
 
 void resolve_ls_run_options(LsRunOptions& run) {
-  if (!run.config.empty()) run.flags->schema().read_file(run.config);
-  run.flags->apply();
+  run.flags->load();
 }
 
 io::ConfigSchema rdf_output_options(const std::string& command, analyze::RdfParams& rdf) {

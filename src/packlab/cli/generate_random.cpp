@@ -21,19 +21,17 @@ void add_generate_random(CLI::App& generate) {
   struct Options {
     io::RandomOptions o;
     std::unique_ptr<OptionFlags> flags;
-    std::string out, config;
+    std::string out;
     bool quiet = false;
   };
   auto opt = std::make_shared<Options>();
   auto* cmd = generate.add_subcommand(
       "random", "Uniform random spheres (overlaps allowed) or random sequential addition (--no-overlap)");
-  cmd->add_option("--config", opt->config, "TOML file with any of the options; flags override it");
   opt->flags = std::make_unique<OptionFlags>(cmd, io::random_options(opt->o));
   cmd->add_option("--out", opt->out, "Output file (format by extension)")->required();
   cmd->add_flag("--quiet", opt->quiet, "No progress output");
   cmd->callback([opt] {
-    if (!opt->config.empty()) opt->flags->schema().read_file(opt->config);
-    opt->flags->apply();
+    opt->flags->load();
     const generate::RandomPackingParams p = opt->o.params();
     Random rng(opt->o.seed);
     const Packing packing = generate::make_random_packing(p, rng);

@@ -262,8 +262,8 @@ void add_generate_vem(CLI::App& generate) {
   auto* cmd = generate.add_subcommand(
       "vem", "Void expansion method: porous packings by growing void particles; CN(q) curve and its inflection point");
   cmd->add_option("--config", opt->config, "TOML file with any parameter (docs/vem.md); flags override it");
-  opt->method = std::make_unique<OptionFlags>(cmd, io::vem_options(opt->params));
-  opt->run = std::make_unique<OptionFlags>(cmd, run_settings_options(opt->settings));
+  opt->method = std::make_unique<OptionFlags>(cmd, io::vem_options(opt->params), false);
+  opt->run = std::make_unique<OptionFlags>(cmd, run_settings_options(opt->settings), false);
   cmd->add_option("--out", opt->out, "Output folder");
   cmd->add_option("--resume", opt->resume, "Continue the run whose checkpoint is in this folder");
   cmd->add_flag("--no-plots", opt->no_plots, "Do not make PNG plots");

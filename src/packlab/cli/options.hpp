@@ -15,8 +15,10 @@ namespace packlab::cli {
 
 class OptionFlags {
  public:
-  // Adds the flags of `schema` to `cmd`; the schema's targets must outlive the parse.
-  OptionFlags(CLI::App* cmd, io::ConfigSchema schema) : schema_(std::move(schema)) {
+  // Adds --config FILE (unless `config_file` is false) and the flags of `schema` to `cmd`; the
+  // schema's targets must outlive the parse.
+  OptionFlags(CLI::App* cmd, io::ConfigSchema schema, bool config_file = true) : schema_(std::move(schema)) {
+    if (config_file) cmd->add_option("--config", config_, "TOML file with any of the options; flags override them");
     values_.resize(schema_.fields().size());
     lists_.resize(schema_.fields().size());
     switches_ = std::make_unique<bool[]>(schema_.fields().size());
@@ -44,6 +46,13 @@ class OptionFlags {
       options_.push_back(o);
     }
   }
+
+  // Reads the config file (if one was given), then the flags: default < file < flag.
+  void load() const {
+    if (!config_.empty()) schema_.read_file(config_);
+    apply();
+  }
+  const std::string& config_file() const { return config_; }
 
   // Writes the flags given on the command line into the schema's targets.
   void apply() const {
@@ -76,6 +85,7 @@ class OptionFlags {
 
  private:
   io::ConfigSchema schema_;
+  std::string config_;                           // --config
   std::vector<std::string> values_;              // the text of each option
   std::vector<std::vector<std::string>> lists_;  // the items of each list option
   std::unique_ptr<bool[]> switches_;             // the boolean fields' flags

@@ -1,5 +1,6 @@
-// packlab test shear IN [--config FILE] [--normal-stiffness 100 --shear-stiffness 10 --cycles 10
-//   --amplitude 0.001 --orientations all|x,y,z|z:x,... --relax-max-steps N] --out DIR
+// packlab test shear IN [--config FILE] [every option of io::shear_test_options as a flag:
+//   --normal-stiffness 100 --shear-stiffness 10 --cycles 10 --amplitude 0.001
+//   --orientations all|x,y,z|z:x,... --relax-max-steps N ...] --out DIR
 // The oscillatory shear test of doh-elastic-properties §2.4 on a bonded model (any file with
 // bonds: `packlab bond` output, lattices included): §2.2 relaxation, plates from the periodic
 // repetition, ten cycles of linearly increasing amplitude, G' = |G*| cos(delta) per orientation.
@@ -14,10 +15,11 @@
 #include <numbers>
 
 #include "packlab/cli/commands.hpp"
+#include "packlab/cli/options.hpp"
 #include "packlab/core/error.hpp"
 #include "packlab/core/progress.hpp"
 #include "packlab/io/atomic_file.hpp"
-#include "packlab/io/config.hpp"
+#include "packlab/io/options.hpp"
 #include "packlab/io/packing_io.hpp"
 #include "packlab/io/plot.hpp"
 #include "packlab/io/report.hpp"
@@ -26,158 +28,9 @@
 
 namespace packlab::cli {
 
-// Shared with calibrate_shear.cpp (declared there): the material/loading flags and config keys of
-// both shear commands, and the report's parameter block.
-std::function<void(mechanics::OscillatoryShearOptions&, std::string&, bool&)> add_shear_flags(CLI::App* cmd,
-                                                                                       const std::string& command);
-nlohmann::json shear_parameters_json(const mechanics::OscillatoryShearOptions& t, const std::string& orientations);
-
-namespace {
-
-struct ShearCliOptions {
-  mechanics::OscillatoryShearOptions test;
-  std::string orientations = "all";
-  std::string config;
-  bool no_relax = false;
-  bool plots = true;
-};
-
-}  // namespace
-
-namespace {
-
-io::ConfigSchema shear_config_schema(const std::string& command, ShearCliOptions& o) {
-  io::ConfigSchema s(command, "The oscillatory shear test (docs/shear.md); flags override the file.");
-  auto& t = o.test;
-  s.number("normal_stiffness", t.normal_stiffness, "Particle normal stiffness k_n [N/m]")
-      .number("shear_stiffness", t.shear_stiffness, "Particle shear stiffness k_s [N/m]")
-      .number("normal_strength", t.normal_strength, "Bond normal strength F_nB [N]")
-      .number("shear_strength", t.shear_strength, "Bond shear strength F_sB [N]")
-      .number("friction", t.friction, "Friction coefficient mu of unbonded contacts [-]")
-      .number("damping", t.damping, "Local damping coefficient alpha, in [0, 1)")
-      .number("density", t.density, "Particle density [kg/m^3] (when the file has none)")
-      .text("stiffness_rule", t.stiffness_rule,
-            "particle: k are PFC particle stiffnesses, contacts and bonds act with k/2; contact: k act as given")
-      .integer("cycles", t.cycles, "Oscillation cycles (amplitude rising linearly to `amplitude`)")
-      .number("amplitude", t.amplitude, "Largest plate deflection / box edge [-]")
-      .integer("steps_per_cycle", t.steps_per_cycle, "Steps per cycle (the quasi-static loading rate)")
-      .integer("samples_per_cycle", t.samples_per_cycle, "Stress samples per cycle (multiple of 4)")
-      .integer("plate_layers", t.plate_layers, "Particle layers of each plate")
-      .integer("regions", t.regions, "Measurement slabs at heights H (k+1)/(regions+1)")
-      .text("orientations", o.orientations, "all, plate normals (x,y,z) or normal:direction pairs (z:x,...)")
-      .number("time_step_safety", t.time_step_safety, "Time step as a fraction of sqrt(m/k)")
-      .integer("threads", t.threads, "OpenMP threads (0 = all cores)")
-      .boolean("relax.enabled", t.relax, "Relax the bonded structure first (§2.2: velocities zeroed after each step)")
-      .boolean("relax.settle", t.settle, "Settle the test set-up with the same procedure before loading")
-      .integer("relax.max_steps", t.relax_options.max_steps, "Step limit of the relaxation")
-      .integer("relax.check_interval", t.relax_options.check_interval, "Steps between two checks")
-      .number("relax.min_decrease", t.relax_options.min_decrease,
-              "Relative decrease of the mean unbalanced force that counts as progress")
-      .integer("relax.patience", t.relax_options.patience, "Checks without progress that end the relaxation")
-      .boolean("output.plots", o.plots, "Draw the PNG plots");
-  return s;
-}
-
-}  // namespace
-
 std::string shear_config_reference() {
-  ShearCliOptions o;
-  o.test.threads = 1;
-  return shear_config_schema("test shear", o).markdown();
-}
-
-// Adds the flags; the returned function (call it in the callback) reads --config, then overrides
-// with the flags given, and fills the test options, the orientation spec and the plot switch.
-std::function<void(mechanics::OscillatoryShearOptions&, std::string&, bool&)> add_shear_flags(CLI::App* cmd,
-                                                                                       const std::string& command) {
-  auto flags = std::make_shared<ShearCliOptions>();
-  flags->test.threads = 1;
-  auto& ft = flags->test;
-  cmd->add_option("--config", flags->config, "TOML file with any parameter (docs/shear.md); flags override it");
-  cmd->add_option("--normal-stiffness", ft.normal_stiffness, "Particle normal stiffness k_n [N/m]")
-      ->capture_default_str();
-  cmd->add_option("--shear-stiffness", ft.shear_stiffness, "Particle shear stiffness k_s [N/m]")->capture_default_str();
-  cmd->add_option("--normal-strength", ft.normal_strength, "Bond normal strength F_nB [N]")->capture_default_str();
-  cmd->add_option("--shear-strength", ft.shear_strength, "Bond shear strength F_sB [N]")->capture_default_str();
-  cmd->add_option("--friction", ft.friction, "Friction of unbonded contacts [-]")->capture_default_str();
-  cmd->add_option("--damping", ft.damping, "Local damping coefficient alpha")->capture_default_str();
-  cmd->add_option("--density", ft.density, "Particle density [kg/m^3] (when the file has none)")->capture_default_str();
-  cmd->add_option("--stiffness-rule", ft.stiffness_rule,
-                  "particle: PFC particle stiffnesses (contacts and bonds act with k/2); contact: as given")
-      ->capture_default_str();
-  cmd->add_option("--cycles", ft.cycles, "Oscillation cycles")->capture_default_str();
-  cmd->add_option("--amplitude", ft.amplitude, "Largest plate deflection / box edge [-] (last cycle)")
-      ->capture_default_str();
-  cmd->add_option("--steps-per-cycle", ft.steps_per_cycle, "Steps per cycle (quasi-static loading rate)")
-      ->capture_default_str();
-  cmd->add_option("--samples-per-cycle", ft.samples_per_cycle, "Stress samples per cycle (multiple of 4)")
-      ->capture_default_str();
-  cmd->add_option("--plate-layers", ft.plate_layers, "Particle layers of each plate")->capture_default_str();
-  cmd->add_option("--regions", ft.regions, "Measurement slabs")->capture_default_str();
-  cmd->add_option("--orientations", flags->orientations,
-                  "all (six), plate normals (x,y,z: both shear directions each) or pairs normal:direction (z:x)")
-      ->capture_default_str();
-  cmd->add_option("--relax-max-steps", ft.relax_options.max_steps, "Step limit of the §2.2 relaxation")
-      ->capture_default_str();
-  cmd->add_flag("--no-relax", flags->no_relax, "Shear the structure as it is (no §2.2 relaxation, no settling)");
-  cmd->add_option("--threads", ft.threads, "OpenMP threads (0 = all cores)")->capture_default_str();
-  return [cmd, flags, command](mechanics::OscillatoryShearOptions& out, std::string& orientations, bool& plots) {
-    auto given = [&](const char* name) { return cmd->count(name) > 0; };
-    ShearCliOptions r;
-    r.test.threads = 1;
-    if (!flags->config.empty()) shear_config_schema(command, r).read_file(flags->config);
-    const auto& f = flags->test;
-    auto& t = r.test;
-    if (given("--normal-stiffness")) t.normal_stiffness = f.normal_stiffness;
-    if (given("--shear-stiffness")) t.shear_stiffness = f.shear_stiffness;
-    if (given("--normal-strength")) t.normal_strength = f.normal_strength;
-    if (given("--shear-strength")) t.shear_strength = f.shear_strength;
-    if (given("--friction")) t.friction = f.friction;
-    if (given("--damping")) t.damping = f.damping;
-    if (given("--density")) t.density = f.density;
-    if (given("--stiffness-rule")) t.stiffness_rule = f.stiffness_rule;
-    if (given("--cycles")) t.cycles = f.cycles;
-    if (given("--amplitude")) t.amplitude = f.amplitude;
-    if (given("--steps-per-cycle")) t.steps_per_cycle = f.steps_per_cycle;
-    if (given("--samples-per-cycle")) t.samples_per_cycle = f.samples_per_cycle;
-    if (given("--plate-layers")) t.plate_layers = f.plate_layers;
-    if (given("--regions")) t.regions = f.regions;
-    if (given("--orientations")) r.orientations = flags->orientations;
-    if (given("--relax-max-steps")) t.relax_options.max_steps = f.relax_options.max_steps;
-    if (given("--threads")) t.threads = f.threads;
-    if (flags->no_relax) t.relax = t.settle = false;
-    t.orientations = mechanics::shear_orientations(r.orientations);
-    mechanics::validate(t);
-    out = t;
-    orientations = r.orientations;
-    plots = r.plots;
-  };
-}
-
-nlohmann::json shear_parameters_json(const mechanics::OscillatoryShearOptions& t, const std::string& orientations) {
-  return {{"normal_stiffness", t.normal_stiffness},
-          {"shear_stiffness", t.shear_stiffness},
-          {"normal_strength", t.normal_strength},
-          {"shear_strength", t.shear_strength},
-          {"friction", t.friction},
-          {"damping", t.damping},
-          {"density", t.density},
-          {"stiffness_rule", t.stiffness_rule},
-          {"cycles", t.cycles},
-          {"amplitude", t.amplitude},
-          {"steps_per_cycle", t.steps_per_cycle},
-          {"samples_per_cycle", t.samples_per_cycle},
-          {"plate_layers", t.plate_layers},
-          {"regions", t.regions},
-          {"orientations", orientations},
-          {"time_step_safety", t.time_step_safety},
-          {"relax", t.relax},
-          {"settle", t.settle},
-          {"relax_max_steps", t.relax_options.max_steps},
-          {"relax_check_interval", t.relax_options.check_interval},
-          {"relax_min_decrease", t.relax_options.min_decrease},
-          {"relax_patience", t.relax_options.patience},
-          {"threads", t.threads}};
+  io::ShearTestRun r;
+  return io::shear_test_options(r).markdown();
 }
 
 namespace {
@@ -259,6 +112,8 @@ nlohmann::json shear_result_json(const mechanics::OscillatoryShearResult& result
 void add_test_shear(CLI::App& test) {
   struct Options {
     std::string in, out;
+    io::ShearTestRun run;
+    std::unique_ptr<OptionFlags> flags;
     bool quiet = false, no_plots = false;
   };
   auto opt = std::make_shared<Options>();
@@ -266,19 +121,19 @@ void add_test_shear(CLI::App& test) {
       "shear", "Oscillatory shear test of a bonded model: storage modulus G' for six orientations (docs/shear.md)");
   cmd->add_option("in", opt->in, "Bonded model (a file with bonds, e.g. from packlab bond)")->required();
   cmd->add_option("--out", opt->out, "Output folder")->required();
-  auto apply = add_shear_flags(cmd, "test shear");
+  opt->flags = std::make_unique<OptionFlags>(cmd, io::shear_test_options(opt->run));
   cmd->add_flag("--no-plots", opt->no_plots, "Do not draw the PNG plot");
   cmd->add_flag("--quiet", opt->quiet, "No progress output");
-  cmd->callback([opt, apply] {
-    mechanics::OscillatoryShearOptions options;
-    std::string orientations;
-    bool plots = true;
-    apply(options, orientations, plots);
+  cmd->callback([opt] {
+    opt->flags->load();
+    mechanics::OscillatoryShearOptions options = opt->run.test;
+    mechanics::validate(options);
     const Packing packing = io::read_packing(opt->in);
     const std::filesystem::path dir = opt->out;
     io::ensure_directory(dir);
     const long per_run = options.steps_per_cycle * options.cycles;
-    Progress progress("test shear", per_run * static_cast<long>(options.orientations.size()), !opt->quiet);
+    const auto orientations = mechanics::shear_orientations(options.orientations);
+    Progress progress("test shear", per_run * static_cast<long>(orientations.size()), !opt->quiet);
     std::string current;
     long offset = 0, last = 0;
     options.progress = [&](const std::string& stage, long done, long) {
@@ -305,11 +160,11 @@ void add_test_shear(CLI::App& test) {
     report["input"] = opt->in;
     report["particles"] = packing.size();
     report["bonds"] = packing.bonds.size();
-    report["parameters"] = shear_parameters_json(options, orientations);
+    report["parameters"] = opt->flags->schema().json();
     report.update(shear_result_json(result));
     io::write_report(dir / "report.json", report);
     io::PlotOptions plot;
-    plot.enabled = !opt->no_plots && plots;
+    plot.enabled = !opt->no_plots && opt->run.plots;
     io::make_plot("shear", {(dir / "stress_strain.csv").string()}, dir / "shear.png", plot);
     if (!opt->quiet) {
       for (const auto& r : result.runs)

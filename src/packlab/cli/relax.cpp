@@ -27,7 +27,7 @@ std::string relax_config_reference() {
 
 void add_relax(CLI::App& app) {
   struct Options {
-    std::string in, out, log, config;
+    std::string in, out, log;
     io::RelaxRun run;
     std::unique_ptr<OptionFlags> flags;
     bool quiet = false;
@@ -38,7 +38,6 @@ void add_relax(CLI::App& app) {
       "relax", "Relax a packing with a contact law and local damping until the forces balance");
   cmd->add_option("in", opt->in, "Input packing")->required();
   cmd->add_option("out", opt->out, "Output packing (format by extension)")->required();
-  cmd->add_option("--config", opt->config, "TOML file with any of the options; flags override it");
   opt->flags = std::make_unique<OptionFlags>(cmd, io::relax_options(opt->run));
   cmd->add_option("--log", opt->log,
                   "Write the diagnostics of every check to this CSV file (and a plot beside it, .png)");
@@ -46,8 +45,7 @@ void add_relax(CLI::App& app) {
   cmd->add_flag("--quiet", opt->quiet, "No progress output");
   cmd->callback([opt] {
     const auto t0 = std::chrono::steady_clock::now();
-    if (!opt->config.empty()) opt->flags->schema().read_file(opt->config);
-    opt->flags->apply();
+    opt->flags->load();
     const Packing packing = io::read_packing(opt->in);
     // Check the output path before running (no surprise after a long run).
     (void)io::format_from_path(opt->out);

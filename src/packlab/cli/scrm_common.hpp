@@ -32,7 +32,7 @@ nlohmann::json write_rdf_outputs(const analyze::Rdf& rdf, const std::vector<doub
 // The command's side of `generate ls` and `generate scrm` (the method's options are
 // io::ls_options / io::scrm_options): output folder, config file, the RDF of the result.
 struct LsRunOptions {
-  std::string out, config;
+  std::string out;
   analyze::RdfParams rdf;
   bool no_plots = false, quiet = false;
   std::unique_ptr<OptionFlags> flags;

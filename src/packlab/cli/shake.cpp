@@ -38,7 +38,7 @@ std::string shake_config_reference() {
 
 void add_shake(CLI::App& app) {
   struct Options {
-    std::string in, out, config;
+    std::string in, out;
     io::ShakeOptions o;
     analyze::RdfParams rdf;
     std::unique_ptr<OptionFlags> flags;
@@ -47,15 +47,13 @@ void add_shake(CLI::App& app) {
   auto opt = std::make_shared<Options>();
   auto* cmd = app.add_subcommand("shake", "Monte-Carlo shaking of a hard-sphere packing (global shakes)");
   cmd->add_option("in", opt->in, "Input packing (no overlaps)")->required();
-  cmd->add_option("--config", opt->config, "TOML file with any of the options; flags override it");
   opt->flags = std::make_unique<OptionFlags>(cmd, shake_schema(opt->o, opt->rdf));
   cmd->add_option("--out", opt->out, "Output folder")->required();
   cmd->add_flag("--no-plots", opt->no_plots, "Do not write PNG plots");
   cmd->add_flag("--quiet", opt->quiet, "No progress output");
   cmd->callback([opt] {
     const auto t0 = std::chrono::steady_clock::now();
-    if (!opt->config.empty()) opt->flags->schema().read_file(opt->config);
-    opt->flags->apply();
+    opt->flags->load();
     opt->o.shake.validate();
     opt->flags->schema().validate();
     Packing packing = io::read_packing(opt->in);

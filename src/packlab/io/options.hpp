@@ -21,6 +21,10 @@
 #include "packlab/generate/shake.hpp"
 #include "packlab/generate/vem.hpp"
 #include "packlab/io/config.hpp"
+#include "packlab/mechanics/calibration.hpp"
+#include "packlab/mechanics/opal_materials.hpp"
+#include "packlab/mechanics/oscillatory_shear.hpp"
+#include "packlab/mechanics/uniaxial_compression.hpp"
 
 namespace packlab::io {
 
@@ -159,5 +163,45 @@ struct BondOptions {
   int threads = 1;
 };
 ConfigSchema bond_options(BondOptions& o);
+
+// The options of the oscillatory shear test (mechanics/oscillatory_shear.hpp), with their
+// ranges: mechanics::validate checks these and the rules between them.
+void add_oscillatory_shear_options(ConfigSchema& schema, mechanics::OscillatoryShearOptions& o);
+
+// `packlab test shear` / packlab.shear_test.
+struct ShearTestRun {
+  mechanics::OscillatoryShearOptions test;
+  bool plots = true;
+};
+ConfigSchema shear_test_options(ShearTestRun& r);
+
+// `packlab calibrate shear` / packlab.calibrate_shear: the test's options and the target.
+struct ShearCalibrationRun {
+  mechanics::OscillatoryShearOptions test;
+  double target_storage_modulus = 0.0;  // [Pa]
+  double tolerance = 0.005;             // relative
+  long max_iterations = 10;
+};
+ConfigSchema shear_calibration_options(ShearCalibrationRun& r);
+
+// The set-up options of a uniaxial compression run (mechanics/uniaxial_compression.hpp), with
+// their ranges: UniaxialCompressionOptions::validate checks these and the rules between them.
+void add_uniaxial_compression_options(ConfigSchema& schema, mechanics::UniaxialCompressionOptions& o);
+
+// `packlab test compress` / packlab.compression_test: the inverse-opal materials
+// (mechanics/opal_materials.hpp), the rate rule and the set-up.
+ConfigSchema compression_test_options(mechanics::UniaxialCompressionSetup& s);
+
+// `packlab calibrate compress` / packlab.calibrate_compress: a compression run's options, the
+// targets and the Newton iteration (mechanics/compression_calibration.hpp).
+struct CompressionCalibrationRun {
+  mechanics::UniaxialCompressionSetup setup;
+  double target_youngs_modulus = 0.0;  // [Pa]
+  double target_strength = 0.0;        // [Pa]
+  bool bulk_factor = false;
+  mechanics::CalibrationOptions calibration;
+  bool full_jacobian = false;
+};
+ConfigSchema compression_calibration_options(CompressionCalibrationRun& r);
 
 }  // namespace packlab::io

@@ -5,6 +5,7 @@
 #include <limits>
 
 #include "packlab/core/error.hpp"
+#include "packlab/io/options.hpp"
 
 namespace packlab::mechanics {
 
@@ -35,8 +36,9 @@ std::vector<dem::ElasticBond::Params> opal_bond_materials(const OpalMaterials& m
 }
 
 void UniaxialCompressionSetup::finish(const Packing& model) {
-  require(strain_rate >= 0.0 && std::isfinite(strain_rate), "strain_rate", strain_rate, ">= 0 1/s (0 = automatic)");
-  require(quasi_static > 0.0 && quasi_static <= 0.1, "quasi_static", quasi_static, "in (0, 0.1]");
+  UniaxialCompressionSetup copy = *this;
+  copy.options.on_point = nullptr;
+  io::compression_test_options(copy).validate();
   options.types = opal_particle_types(materials);
   options.bond_materials = opal_bond_materials(materials);
   options.snapshot_strains = snapshot_strains;

@@ -183,7 +183,7 @@ OscillatoryShearResult run_oscillatory_shear(const Packing& bonded, const Oscill
   } else {
     result.relaxed_packing = bonded;
   }
-  for (const auto& o : options.orientations) {
+  for (const auto& o : shear_orientations(options.orientations)) {
     result.runs.push_back(run_shear_orientation(result.relaxed_packing, o, options));
     const ShearRun& r = result.runs.back();
     result.particle_steps += static_cast<double>(r.structure_particles + r.plate_particles) * static_cast<double>(r.steps);

@@ -82,12 +82,14 @@ struct OscillatoryShearOptions {
   bool settle = true;
   dem::ZeroVelocityRelaxOptions relax_options{};
   int threads = 1;
-  std::vector<ShearOrientation> orientations = shear_orientations("all");
+  // Which orientations to run, as shear_orientations() reads them: "all", "x,z", "z:x,x:y".
+  std::string orientations = "all";
   // Called now and then: stage ("relax", "z:x", ...), steps done and total of that stage.
   std::function<void(const std::string& stage, long done, long total)> progress;
 };
 
-// Throws InputError naming the option that is out of range.
+// Throws InputError naming the option that is out of range (the ranges of the option set
+// io::shear_options declares, and the rules between options).
 void validate(const OscillatoryShearOptions& options);
 
 // The engine configuration the test uses (contact law, bond material, time step safety, threads).

@@ -7,6 +7,7 @@
 #include <limits>
 
 #include "packlab/core/error.hpp"
+#include "packlab/io/options.hpp"
 #include "packlab/mechanics/uniaxial_compression.hpp"
 
 namespace packlab::mechanics {
@@ -41,21 +42,17 @@ double cross_section_area(const Packing& model, const std::string& sides) {
 }  // namespace
 
 void UniaxialCompressionOptions::validate() const {
+  UniaxialCompressionOptions copy = *this;
+  copy.on_point = nullptr;
+  io::ConfigSchema ranges("test compress");
+  io::add_uniaxial_compression_options(ranges, copy);
+  ranges.validate();
+  // Set by UniaxialCompressionSetup::finish (or the caller), not an option of the front ends.
   require(strain_rate > 0.0 && std::isfinite(strain_rate), "strain_rate", strain_rate, "> 0 1/s");
-  require(max_strain > 0.0 && max_strain < 0.5, "max_strain", max_strain, "in (0, 0.5)");
-  require(stop_drop >= 0.0 && stop_drop < 1.0, "stop_drop", stop_drop, "in [0, 1) (0 = run to max_strain)");
   if (sides != "periodic" && sides != "open") fail_input(fmt::format("sides = {}: must be 'periodic' or 'open'", sides));
   if (plate != "glued" && plate != "contact") fail_input(fmt::format("plate = {}: must be 'glued' or 'contact'", plate));
-  require(plate_layers > 0.0 && plate_layers <= 100.0, "plate_layers", plate_layers, "in (0, 100]");
-  require(substrate_layers >= 0.0 && substrate_layers <= 100.0, "substrate_layers", substrate_layers, "in [0, 100]");
-  require(time_step >= 0.0 && std::isfinite(time_step), "time_step", time_step, ">= 0 s (0 = automatic)");
-  require(time_step_safety > 0.0 && time_step_safety <= 1.0, "time_step_safety", time_step_safety, "in (0, 1]");
-  require(samples >= 10 && samples <= 10000000, "samples", static_cast<double>(samples), "in [10, 1e7]");
-  require(modulus_lower >= 0.0 && modulus_lower < 1.0, "modulus_lower", modulus_lower, "in [0, 1)");
-  require(modulus_window > 0.0 && modulus_window <= 1.0, "modulus_window", modulus_window, "in (0, 1]");
-  require(threads >= 0, "threads", threads, ">= 0 (0 = all cores)");
   for (double s : snapshot_strains)
-    require(s > 0.0 && s <= max_strain, "snapshot strain", s, "in (0, max_strain]");
+    require(s > 0.0 && s <= max_strain, "snapshot_strains", s, fmt::format("in (0, max_strain = {:g}]", max_strain));
   if (types.empty()) fail_input("compression test: no particle type parameters given");
   if (bond_materials.empty()) fail_input("compression test: no bond material parameters given");
 }
