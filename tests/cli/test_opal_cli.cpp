@@ -82,7 +82,7 @@ TEST(OpalCli, BadInputExitsWithCodeTwoNamingTheKey) {
   TempDir dir("opal-cli-bad");
   auto r = run_packlab("generate fba --particles 100 --porosity 0.2 --quiet --out " + dir.file("a"));
   EXPECT_EQ(r.exit_code, 2);
-  EXPECT_NE(r.output.find("target_porosity = 0.2"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("porosity = 0.2"), std::string::npos) << r.output;  // the key of the flag and the file
   r = run_packlab("generate fba --particles 100 --periodic xq --quiet --out " + dir.file("b"));
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_NE(r.output.find("periodic = xq"), std::string::npos) << r.output;

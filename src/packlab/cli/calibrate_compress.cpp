@@ -43,94 +43,84 @@ nlohmann::json history_json(const mechanics::CalibrationResult& c) {
 
 }  // namespace
 
-std::string compress_calibration_config_reference() {
-  io::CompressionCalibrationRun r;
-  return io::compression_calibration_options(r).markdown();
-}
-
 void add_calibrate_compress(CLI::App& calibrate) {
-  struct Options {
-    std::string in, out;
-    io::CompressionCalibrationRun run;
-    std::unique_ptr<OptionFlags> flags;
-    bool quiet = false, no_plots = false;
-  };
-  auto opt = std::make_shared<Options>();
-  auto* cmd = calibrate.add_subcommand(
-      "compress", "Calibrate bond Young's modulus and strength to a target (eq. 18-19), or the bulk factor K_E (eq. 20)");
-  cmd->add_option("in", opt->in, "Bonded model (.vtu)")->required();
-  cmd->add_option("--out", opt->out, "Output folder")->required();
-  opt->flags = std::make_unique<OptionFlags>(cmd, io::compression_calibration_options(opt->run));
-  cmd->add_flag("--no-plots", opt->no_plots, "Do not make PNG plots");
-  cmd->add_flag("--quiet", opt->quiet, "No progress output");
-  cmd->callback([opt] {
-    opt->flags->load();
-    opt->flags->schema().validate();
-    io::CompressionCalibrationRun& run = opt->run;
-    const Packing model = io::read_packing(opt->in);
-    mechanics::UniaxialCompressionSetup& s = run.setup;
-    s.finish(model);
-    s.options.validate();
-    if (!run.bulk_factor) {
-      require(run.target_youngs_modulus > 0.0, "--target-youngs-modulus", run.target_youngs_modulus,
-              "> 0 Pa (or use --bulk-factor)");
-      require(run.target_strength > 0.0, "--target-strength", run.target_strength, "> 0 Pa");
-    }
-    const std::filesystem::path dir = opt->out;
-    io::ensure_directory(dir);
-    nlohmann::json report = io::report_header("calibrate compress");
-    report["input"] = opt->in;
-    if (run.bulk_factor) {
-      const mechanics::BulkFactorResult b = mechanics::compression_bulk_factor(model, s);
-      const mechanics::UniaxialCompressionResult& r = b.run;
-      write_uniaxial_compression_outputs(r, s.options, dir / "final", !opt->no_plots, false);
-      report["mode"] = "bulk_factor";
-      report["bond_youngs_modulus"] = s.materials.silica_youngs_modulus;
-      report["bond_strength"] = s.materials.silica_strength;
-      report["bulk_factor"] = b.bulk_factor;
-      report["strength_ratio"] = b.strength_ratio;
-      report["strength_factor"] = b.strength_factor;
-      report["compression"] = uniaxial_compression_report(r, s.options);
-      report["youngs_modulus"] = r.youngs_modulus;
-      report["strength"] = r.strength;
-      io::write_report(dir / "report.json", report);
-      if (!opt->quiet)
-        fmt::print("E_macro = {:.5g} GPa, K_E = E_macro / E_b = {:.4f}, strength {:.5g} MPa = E_macro / {:.2f} "
-                   "({:.3f} x sigma_max)\n",
-                   r.youngs_modulus * 1e-9, b.bulk_factor, r.strength * 1e-6, b.strength_ratio, b.strength_factor);
-      return;
-    }
-    run.calibration.diagonal = !run.full_jacobian;
-    auto on_run = [&](int simulation, const std::vector<double>& p, const mechanics::UniaxialCompressionResult& r) {
-      if (!opt->quiet)
-        fmt::print("run {}: E_b = {:.6g} GPa, sigma_max = {:.6g} MPa -> E = {:.6g} GPa, strength = {:.6g} MPa ({:.1f} s)\n",
-                   simulation, p[0] * 1e-9, p[1] * 1e-6, r.youngs_modulus * 1e-9, r.strength * 1e-6, r.seconds);
-      std::fflush(stdout);
-    };
-    const mechanics::CompressionCalibrationResult result =
-        mechanics::calibrate_compression(model, s, run.target_youngs_modulus, run.target_strength, run.calibration,
-                                         on_run);
-    const mechanics::CalibrationResult& c = result.calibration;
-    const Columns history = mechanics::calibration_history_columns(c);
-    io::write_text_atomically(dir / "calibration.csv", io::to_csv(history));
-    if (result.has_final)
-      write_uniaxial_compression_outputs(result.final, s.options, dir / "final", !opt->no_plots, false);
-    report["mode"] = "calibrate";
-    report["scheme"] = run.full_jacobian ? "full finite-difference Jacobian" : "diagonal (paper: dE/dsigma = dS/dE_b = 0)";
-    report["converged"] = c.converged;
-    report["iterations"] = c.iterations;
-    report["simulations"] = c.evaluations;
-    report["bond_youngs_modulus"] = c.parameters[0];
-    report["bond_strength"] = c.parameters[1];
-    report["youngs_modulus"] = c.responses[0];
-    report["strength"] = c.responses[1];
-    report["history"] = history_json(c);
-    io::write_report(dir / "report.json", report);
-    if (!opt->quiet)
-      fmt::print("{}: E_b = {:.6g} GPa, sigma_max = {:.6g} MPa give E = {:.6g} GPa, strength = {:.6g} MPa\n", c.reason(),
-                 c.parameters[0] * 1e-9, c.parameters[1] * 1e-6, c.responses[0] * 1e-9, c.responses[1] * 1e-6);
-    if (!c.converged) fail_input("calibration did not converge: " + c.reason());
-  });
+  CommandParts parts;
+  parts.input = "Bonded model (.vtu)";
+  parts.output = "Output folder";
+  parts.plots = true;
+  add_option_command(
+      calibrate, "compress",
+      "Calibrate bond Young's modulus and strength to a target (eq. 18-19), or the bulk factor K_E (eq. 20)",
+      io::compression_calibration_options, parts, [](const OptionCommand<io::CompressionCalibrationRun>& command) {
+        io::CompressionCalibrationRun run = command.settings;
+        const Packing model = io::read_packing(command.in);
+        mechanics::UniaxialCompressionSetup& s = run.setup;
+        s.finish(model);
+        s.options.validate();
+        if (!run.bulk_factor) {
+          require(run.target_youngs_modulus > 0.0, "--target-youngs-modulus", run.target_youngs_modulus,
+                  "> 0 Pa (or use --bulk-factor)");
+          require(run.target_strength > 0.0, "--target-strength", run.target_strength, "> 0 Pa");
+        }
+        const std::filesystem::path dir = command.out;
+        io::ensure_directory(dir);
+        nlohmann::json report = io::report_header("calibrate compress");
+        report["input"] = command.in;
+        if (run.bulk_factor) {
+          const mechanics::BulkFactorResult b = mechanics::compression_bulk_factor(model, s);
+          const mechanics::UniaxialCompressionResult& r = b.run;
+          write_uniaxial_compression_outputs(r, s.options, dir / "final", !command.no_plots, false);
+          report["mode"] = "bulk_factor";
+          report["bond_youngs_modulus"] = s.materials.silica_youngs_modulus;
+          report["bond_strength"] = s.materials.silica_strength;
+          report["bulk_factor"] = b.bulk_factor;
+          report["strength_ratio"] = b.strength_ratio;
+          report["strength_factor"] = b.strength_factor;
+          report["compression"] = uniaxial_compression_report(r, s.options);
+          report["youngs_modulus"] = r.youngs_modulus;
+          report["strength"] = r.strength;
+          io::write_report(dir / "report.json", report);
+          if (!command.quiet)
+            fmt::print(
+                "E_macro = {:.5g} GPa, K_E = E_macro / E_b = {:.4f}, strength {:.5g} MPa = E_macro / {:.2f} "
+                "({:.3f} x sigma_max)\n",
+                r.youngs_modulus * 1e-9, b.bulk_factor, r.strength * 1e-6, b.strength_ratio, b.strength_factor);
+          return;
+        }
+        run.calibration.diagonal = !run.full_jacobian;
+        auto on_run = [&](int simulation, const std::vector<double>& p, const mechanics::UniaxialCompressionResult& r) {
+          if (!command.quiet)
+            fmt::print(
+                "run {}: E_b = {:.6g} GPa, sigma_max = {:.6g} MPa -> E = {:.6g} GPa, strength = {:.6g} MPa ({:.1f} "
+                "s)\n",
+                simulation, p[0] * 1e-9, p[1] * 1e-6, r.youngs_modulus * 1e-9, r.strength * 1e-6, r.seconds);
+          std::fflush(stdout);
+        };
+        const mechanics::CompressionCalibrationResult result = mechanics::calibrate_compression(
+            model, s, run.target_youngs_modulus, run.target_strength, run.calibration, on_run);
+        const mechanics::CalibrationResult& c = result.calibration;
+        const Columns history = mechanics::calibration_history_columns(c);
+        io::write_text_atomically(dir / "calibration.csv", io::to_csv(history));
+        if (result.has_final)
+          write_uniaxial_compression_outputs(result.final, s.options, dir / "final", !command.no_plots, false);
+        report["mode"] = "calibrate";
+        report["scheme"] =
+            run.full_jacobian ? "full finite-difference Jacobian" : "diagonal (paper: dE/dsigma = dS/dE_b = 0)";
+        report["converged"] = c.converged;
+        report["iterations"] = c.iterations;
+        report["simulations"] = c.evaluations;
+        report["bond_youngs_modulus"] = c.parameters[0];
+        report["bond_strength"] = c.parameters[1];
+        report["youngs_modulus"] = c.responses[0];
+        report["strength"] = c.responses[1];
+        report["history"] = history_json(c);
+        io::write_report(dir / "report.json", report);
+        if (!command.quiet)
+          fmt::print("{}: E_b = {:.6g} GPa, sigma_max = {:.6g} MPa give E = {:.6g} GPa, strength = {:.6g} MPa\n",
+                     c.reason(), c.parameters[0] * 1e-9, c.parameters[1] * 1e-6, c.responses[0] * 1e-9,
+                     c.responses[1] * 1e-6);
+        if (!c.converged) fail_input("calibration did not converge: " + c.reason());
+      });
 }
 
 }  // namespace packlab::cli

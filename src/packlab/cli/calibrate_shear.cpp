@@ -22,61 +22,47 @@
 
 namespace packlab::cli {
 
-std::string shear_calibration_config_reference() {
-  io::ShearCalibrationRun r;
-  return io::shear_calibration_options(r).markdown();
-}
-
 void add_calibrate_shear(CLI::App& calibrate) {
-  struct Options {
-    std::string in, out;
-    io::ShearCalibrationRun run;
-    std::unique_ptr<OptionFlags> flags;
-    bool quiet = false;
-  };
-  auto opt = std::make_shared<Options>();
-  auto* cmd = calibrate.add_subcommand(
-      "shear", "Calibrate the particle normal stiffness k_n so that the storage modulus G' matches a target");
-  cmd->add_option("in", opt->in, "Bonded model (a file with bonds)")->required();
-  cmd->add_option("--out", opt->out, "Output folder")->required();
-  opt->flags = std::make_unique<OptionFlags>(cmd, io::shear_calibration_options(opt->run));
-  cmd->add_flag("--quiet", opt->quiet, "No progress output");
-  cmd->callback([opt] {
-    opt->flags->load();
-    const io::ShearCalibrationRun& run = opt->run;
-    const mechanics::OscillatoryShearOptions& options = run.test;
-    opt->flags->schema().validate();  // the target is required: its default 0 is outside its range
-    mechanics::validate(options);
-    const Packing packing = io::read_packing(opt->in);
-    const std::filesystem::path dir = opt->out;
-    io::ensure_directory(dir);
-    const auto result =
-        mechanics::calibrate_normal_stiffness(packing, run.target_storage_modulus, options, run.tolerance,
-                                              static_cast<int>(run.max_iterations));
-    std::ostringstream csv;
-    csv << "evaluation,normal_stiffness,shear_stiffness,storage_modulus\n";
-    const double ratio = options.shear_stiffness / options.normal_stiffness;
-    for (std::size_t k = 0; k < result.tried_normal_stiffness.size(); ++k)
-      csv << fmt::format("{},{:.10g},{:.10g},{:.10g}\n", k + 1, result.tried_normal_stiffness[k],
-                         ratio * result.tried_normal_stiffness[k], result.tried_storage_modulus[k]);
-    io::write_text_atomically(dir / "calibration.csv", csv.str());
-    nlohmann::json report = io::report_header("calibrate shear");
-    report["input"] = opt->in;
-    report["parameters"] = opt->flags->schema().json();
-    report["normal_stiffness"] = result.normal_stiffness;
-    report["shear_stiffness"] = result.shear_stiffness;
-    report["storage_modulus"] = result.storage_modulus;
-    report["converged"] = result.converged;
-    report["iterations"] = result.iterations;
-    report["evaluations"] = result.evaluations;
-    report["reason"] = result.reason;
-    report["units"] = {{"normal_stiffness", "N/m"}, {"storage_modulus", "Pa"}};
-    io::write_report(dir / "report.json", report);
-    if (!opt->quiet)
-      fmt::print("k_n = {:.6g} N/m (k_s = {:.6g} N/m): G' = {:.6g} Pa for the target {:.6g} Pa; {}\n",
-                 result.normal_stiffness, result.shear_stiffness, result.storage_modulus, run.target_storage_modulus, result.reason);
-    if (!result.converged) fail_input("calibrate shear: " + result.reason);
-  });
+  CommandParts parts;
+  parts.input = "Bonded model (a file with bonds)";
+  parts.output = "Output folder";
+  add_option_command(
+      calibrate, "shear", "Calibrate the particle normal stiffness k_n so that the storage modulus G' matches a target",
+      io::shear_calibration_options, parts, [](const OptionCommand<io::ShearCalibrationRun>& c) {
+        // The target is required: its default 0 is outside its range, so the range check stopped it.
+        const io::ShearCalibrationRun& run = c.settings;
+        const mechanics::OscillatoryShearOptions& options = run.test;
+        mechanics::validate(options);
+        const Packing packing = io::read_packing(c.in);
+        const std::filesystem::path dir = c.out;
+        io::ensure_directory(dir);
+        const auto result = mechanics::calibrate_normal_stiffness(packing, run.target_storage_modulus, options,
+                                                                  run.tolerance, static_cast<int>(run.max_iterations));
+        std::ostringstream csv;
+        csv << "evaluation,normal_stiffness,shear_stiffness,storage_modulus\n";
+        const double ratio = options.shear_stiffness / options.normal_stiffness;
+        for (std::size_t k = 0; k < result.tried_normal_stiffness.size(); ++k)
+          csv << fmt::format("{},{:.10g},{:.10g},{:.10g}\n", k + 1, result.tried_normal_stiffness[k],
+                             ratio * result.tried_normal_stiffness[k], result.tried_storage_modulus[k]);
+        io::write_text_atomically(dir / "calibration.csv", csv.str());
+        nlohmann::json report = io::report_header("calibrate shear");
+        report["input"] = c.in;
+        report["parameters"] = c.flags->schema().json();
+        report["normal_stiffness"] = result.normal_stiffness;
+        report["shear_stiffness"] = result.shear_stiffness;
+        report["storage_modulus"] = result.storage_modulus;
+        report["converged"] = result.converged;
+        report["iterations"] = result.iterations;
+        report["evaluations"] = result.evaluations;
+        report["reason"] = result.reason;
+        report["units"] = {{"normal_stiffness", "N/m"}, {"storage_modulus", "Pa"}};
+        io::write_report(dir / "report.json", report);
+        if (!c.quiet)
+          fmt::print("k_n = {:.6g} N/m (k_s = {:.6g} N/m): G' = {:.6g} Pa for the target {:.6g} Pa; {}\n",
+                     result.normal_stiffness, result.shear_stiffness, result.storage_modulus,
+                     run.target_storage_modulus, result.reason);
+        if (!result.converged) fail_input("calibrate shear: " + result.reason);
+      });
 }
 
 }  // namespace packlab::cli

@@ -39,16 +39,6 @@ std::string vem_config_reference();
 std::string ls_config_reference();
 std::string scrm_config_reference();
 std::string shake_config_reference();
-std::string fba_config_reference();
-std::string opal_config_reference();
-std::string relax_config_reference();
-std::string lattice_config_reference();
-std::string random_config_reference();
-std::string bond_config_reference();
-std::string shear_config_reference();
-std::string shear_calibration_config_reference();
-std::string compress_config_reference();
-std::string compress_calibration_config_reference();
 std::string config_reference();
 void add_config_keys(CLI::App& app);
 

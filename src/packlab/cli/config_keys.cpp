@@ -4,6 +4,8 @@
 #include <fmt/format.h>
 
 #include "packlab/cli/commands.hpp"
+#include "packlab/cli/options.hpp"
+#include "packlab/io/options.hpp"
 
 namespace packlab::cli {
 
@@ -17,10 +19,12 @@ std::string config_reference() {
       "function, every key is also a flag (`relax.max_steps`: `--relax-max-steps`) and a keyword of\n"
       "that function (`relax_max_steps`), from the same declaration.\n\n";
   for (const std::string& section :
-       {lattice_config_reference(), random_config_reference(), vem_config_reference(), ls_config_reference(),
-        scrm_config_reference(), shake_config_reference(), fba_config_reference(), opal_config_reference(),
-        relax_config_reference(), bond_config_reference(), shear_config_reference(),
-        shear_calibration_config_reference(), compress_config_reference(), compress_calibration_config_reference()})
+       {option_reference(io::lattice_options), option_reference(io::random_options), vem_config_reference(),
+        ls_config_reference(), scrm_config_reference(), shake_config_reference(), option_reference(io::fba_options),
+        option_reference(io::opal_build_options), option_reference(io::relax_options),
+        option_reference(io::bond_options), option_reference(io::shear_test_options),
+        option_reference(io::shear_calibration_options), option_reference(io::compression_test_options),
+        option_reference(io::compression_calibration_options)})
     out += section;
   return out;
 }

@@ -28,109 +28,97 @@
 
 namespace packlab::cli {
 
-std::string fba_config_reference() {
-  io::FbaOptions o;
-  return io::fba_options(o).markdown();
-}
-
 void add_generate_fba(CLI::App& generate) {
-  struct Options {
-    io::FbaOptions o;
-    std::unique_ptr<OptionFlags> flags;
-    std::string out;
-    bool quiet = false, no_plots = false;
-  };
-  auto opt = std::make_shared<Options>();
-  auto* cmd = generate.add_subcommand(
-      "fba", "Force-biased algorithm: dense random sphere packing to a target porosity (0.38 in bpm-inverse-opals)");
-  opt->flags = std::make_unique<OptionFlags>(cmd, io::fba_options(opt->o));
-  cmd->add_option("--out", opt->out, "Output folder")->required();
-  cmd->add_flag("--no-plots", opt->no_plots, "Do not write PNG plots");
-  cmd->add_flag("--quiet", opt->quiet, "No progress output");
-  cmd->callback([opt] {
-    const auto t0 = std::chrono::steady_clock::now();
-    opt->flags->load();
-    const io::FbaOptions& o = opt->o;
-    const io::FbaOptions::Setup setup = o.setup();
-    opt->flags->schema().validate();
-    const Box& box = setup.box;
-    const long n = setup.count;
-    const generate::SizeClasses& classes = setup.classes;
-    io::ensure_directory(opt->out);
-    Random rng(o.seed);
-    std::vector<double> rho = generate::fba_class_radii(n, classes, rng);
-    Progress progress("generate fba", 0, !opt->quiet);
-    const generate::FbaResult r =
-        generate::fba_pack(box, rho, o.fba, rng, o.history_every, [&](const generate::FbaStatus& s) {
-          progress.update(s.iteration, fmt::format("max overlap {:.3g}, nominal/target diameter {:.5f}",
-                                                   s.max_overlap, s.outer_scale));
-        });
-    progress.finish();
-    const Packing& packing = r.packing;
-    const std::filesystem::path dir(opt->out);
-    io::WriteOptions w;
-    w.comment = fmt::format("packlab {} generate fba porosity={:g} N={} tolerance={:g} seed={} stop={}",
-                            io::version(), o.fba.target_porosity, packing.size(), o.fba.tolerance, o.seed,
-                            generate::fba_stop_name(r.status.stop));
-    io::write_packing(packing, dir / "packing.xyz", w);
-    io::write_packing(packing, dir / "packing.vtu", w);
-    std::ostringstream log;
-    log << "iteration,outer_scale,inner_scale,max_overlap,overlapping_pairs,seconds\n";
-    for (const auto& s : r.history)
-      log << fmt::format("{},{:.10g},{:.10g},{:.6g},{},{:.4f}\n", s.iteration, s.outer_scale, s.inner_scale,
-                         s.max_overlap, s.overlapping_pairs, s.seconds);
-    io::write_text_atomically(dir / "fba_log.csv", log.str());
-    io::PlotOptions po;
-    po.enabled = !opt->no_plots;
-    io::make_plot("fba", {(dir / "fba_log.csv").string(), fmt::format("{:g}", o.fba.tolerance)},
-                  dir / "fba.png", po);
-    analyze::Coordination cn(0.01);
-    cn.compute(packing);
-    const double diameter_max = 2.0 * *std::max_element(packing.radius.begin(), packing.radius.end());
-    nlohmann::json report = io::report_header("generate fba");
-    report["parameters"] = {{"particles", n},
-                            {"box_m", {box.length.x, box.length.y, box.length.z}},
-                            {"periodic", {box.periodic[0], box.periodic[1], box.periodic[2]}},
-                            {"diameter_m", o.diameter},
-                            {"sizes", classes.sizes},
-                            {"number_fractions", classes.number_fractions()},
-                            {"target_porosity", o.fba.target_porosity},
-                            {"tolerance", o.fba.tolerance},
-                            {"shrink_rate", o.fba.shrink_rate},
-                            {"step", o.fba.step},
-                            {"max_move", o.fba.max_move},
-                            {"max_iterations", o.fba.max_iterations},
-                            {"threads", o.fba.threads},
-                            {"seed", o.seed}};
-    const double seconds_fba = r.status.seconds;
-    report["results"] = {
-        {"stop", generate::fba_stop_name(r.status.stop)},
-        {"porosity", 1.0 - packing.volume_fraction()},
-        {"volume_fraction", packing.volume_fraction()},
-        {"iterations", r.status.iteration},
-        {"max_overlap", r.status.max_overlap},
-        {"verified_max_overlap", r.verified_max_overlap},
-        {"largest_diameter_m", diameter_max},
-        {"mean_coordination_eps_0.01", cn.mean()},
-        {"fba_seconds", seconds_fba},
-        {"iterations_per_second", seconds_fba > 0 ? static_cast<double>(r.status.iteration) / seconds_fba : 0.0},
-        {"particle_iterations_per_second",
-         seconds_fba > 0 ? static_cast<double>(r.status.iteration) * static_cast<double>(n) / seconds_fba : 0.0}};
-    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-    report["seconds"] = seconds;
-    io::write_report(dir / "report.json", report);
-    if (r.status.stop != generate::FbaStop::target_reached)
-      fail_input(fmt::format("max_iterations = {}: the largest overlap is still {:.3g} > tolerance {:g} (files written "
-                             "to {}); raise --max-iterations or --porosity",
-                             o.fba.max_iterations, r.status.max_overlap, o.fba.tolerance, opt->out));
-    if (!opt->quiet)
-      fmt::print("{}: {} spheres, porosity {:.6f}, max overlap {:.3g} (tolerance {:g}) after {} iterations "
-                 "({:.3g} s, {:.3g} particle-iterations/s); wrote {} in {:.2f} s\n",
-                 generate::fba_stop_name(r.status.stop), n, 1.0 - packing.volume_fraction(), r.verified_max_overlap,
-                 o.fba.tolerance, r.status.iteration, seconds_fba,
-                 seconds_fba > 0 ? static_cast<double>(r.status.iteration) * static_cast<double>(n) / seconds_fba : 0.0,
-                 opt->out, seconds);
-  });
+  CommandParts parts;
+  parts.output = "Output folder";
+  parts.plots = true;
+  add_option_command(
+      generate, "fba",
+      "Force-biased algorithm: dense random sphere packing to a target porosity (0.38 in bpm-inverse-opals)",
+      io::fba_options, parts, [](const OptionCommand<io::FbaOptions>& c) {
+        const auto t0 = std::chrono::steady_clock::now();
+        const io::FbaOptions& o = c.settings;
+        const io::FbaOptions::Setup setup = o.setup();
+        const Box& box = setup.box;
+        const long n = setup.count;
+        const generate::SizeClasses& classes = setup.classes;
+        io::ensure_directory(c.out);
+        Random rng(o.seed);
+        std::vector<double> rho = generate::fba_class_radii(n, classes, rng);
+        Progress progress("generate fba", 0, !c.quiet);
+        const generate::FbaResult r =
+            generate::fba_pack(box, rho, o.fba, rng, o.history_every, [&](const generate::FbaStatus& s) {
+              progress.update(s.iteration, fmt::format("max overlap {:.3g}, nominal/target diameter {:.5f}",
+                                                       s.max_overlap, s.outer_scale));
+            });
+        progress.finish();
+        const Packing& packing = r.packing;
+        const std::filesystem::path dir(c.out);
+        io::WriteOptions w;
+        w.comment = fmt::format("packlab {} generate fba porosity={:g} N={} tolerance={:g} seed={} stop={}",
+                                io::version(), o.fba.target_porosity, packing.size(), o.fba.tolerance, o.seed,
+                                generate::fba_stop_name(r.status.stop));
+        io::write_packing(packing, dir / "packing.xyz", w);
+        io::write_packing(packing, dir / "packing.vtu", w);
+        std::ostringstream log;
+        log << "iteration,outer_scale,inner_scale,max_overlap,overlapping_pairs,seconds\n";
+        for (const auto& s : r.history)
+          log << fmt::format("{},{:.10g},{:.10g},{:.6g},{},{:.4f}\n", s.iteration, s.outer_scale, s.inner_scale,
+                             s.max_overlap, s.overlapping_pairs, s.seconds);
+        io::write_text_atomically(dir / "fba_log.csv", log.str());
+        io::PlotOptions po;
+        po.enabled = !c.no_plots;
+        io::make_plot("fba", {(dir / "fba_log.csv").string(), fmt::format("{:g}", o.fba.tolerance)}, dir / "fba.png",
+                      po);
+        analyze::Coordination cn(0.01);
+        cn.compute(packing);
+        const double diameter_max = 2.0 * *std::max_element(packing.radius.begin(), packing.radius.end());
+        nlohmann::json report = io::report_header("generate fba");
+        report["parameters"] = {{"particles", n},
+                                {"box_m", {box.length.x, box.length.y, box.length.z}},
+                                {"periodic", {box.periodic[0], box.periodic[1], box.periodic[2]}},
+                                {"diameter_m", o.diameter},
+                                {"sizes", classes.sizes},
+                                {"number_fractions", classes.number_fractions()},
+                                {"target_porosity", o.fba.target_porosity},
+                                {"tolerance", o.fba.tolerance},
+                                {"shrink_rate", o.fba.shrink_rate},
+                                {"step", o.fba.step},
+                                {"max_move", o.fba.max_move},
+                                {"max_iterations", o.fba.max_iterations},
+                                {"threads", o.fba.threads},
+                                {"seed", o.seed}};
+        const double seconds_fba = r.status.seconds;
+        report["results"] = {
+            {"stop", generate::fba_stop_name(r.status.stop)},
+            {"porosity", 1.0 - packing.volume_fraction()},
+            {"volume_fraction", packing.volume_fraction()},
+            {"iterations", r.status.iteration},
+            {"max_overlap", r.status.max_overlap},
+            {"verified_max_overlap", r.verified_max_overlap},
+            {"largest_diameter_m", diameter_max},
+            {"mean_coordination_eps_0.01", cn.mean()},
+            {"fba_seconds", seconds_fba},
+            {"iterations_per_second", seconds_fba > 0 ? static_cast<double>(r.status.iteration) / seconds_fba : 0.0},
+            {"particle_iterations_per_second",
+             seconds_fba > 0 ? static_cast<double>(r.status.iteration) * static_cast<double>(n) / seconds_fba : 0.0}};
+        const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+        report["seconds"] = seconds;
+        io::write_report(dir / "report.json", report);
+        if (r.status.stop != generate::FbaStop::target_reached)
+          fail_input(
+              fmt::format("max_iterations = {}: the largest overlap is still {:.3g} > tolerance {:g} (files written "
+                          "to {}); raise --max-iterations or --porosity",
+                          o.fba.max_iterations, r.status.max_overlap, o.fba.tolerance, c.out));
+        if (!c.quiet)
+          fmt::print(
+              "{}: {} spheres, porosity {:.6f}, max overlap {:.3g} (tolerance {:g}) after {} iterations "
+              "({:.3g} s, {:.3g} particle-iterations/s); wrote {} in {:.2f} s\n",
+              generate::fba_stop_name(r.status.stop), n, 1.0 - packing.volume_fraction(), r.verified_max_overlap,
+              o.fba.tolerance, r.status.iteration, seconds_fba,
+              seconds_fba > 0 ? static_cast<double>(r.status.iteration) * static_cast<double>(n) / seconds_fba : 0.0,
+              c.out, seconds);
+      });
 }
 
 }  // namespace packlab::cli

@@ -11,36 +11,22 @@
 
 namespace packlab::cli {
 
-std::string lattice_config_reference() {
-  io::LatticeOptions o;
-  return io::lattice_options(o).markdown();
-}
-
 void add_generate_lattice(CLI::App& generate) {
-  struct Options {
-    io::LatticeOptions o;
-    std::unique_ptr<OptionFlags> flags;
-    std::string out;
-    bool quiet = false;
-  };
-  auto opt = std::make_shared<Options>();
-  auto* cmd = generate.add_subcommand("lattice", "Cubic lattice (sc, bcc, fcc) in a matching periodic box");
-  opt->flags = std::make_unique<OptionFlags>(cmd, io::lattice_options(opt->o));
-  cmd->add_option("--out", opt->out, "Output file (format by extension: .xyz .vtu .data .csv .txt)")->required();
-  cmd->add_flag("--quiet", opt->quiet, "No progress output");
-  cmd->callback([opt] {
-    opt->flags->load();
-    const generate::LatticeParams p = opt->o.params();
-    const Packing packing = generate::make_lattice(p);
-    opt->flags->schema().validate();
-    io::WriteOptions w;
-    w.comment = fmt::format("packlab generate lattice --type {} --cells {} {} {} --radius {:.17g} --gap {:.17g}",
-                            opt->o.type, p.cells[0], p.cells[1], p.cells[2], p.radius, p.gap);
-    io::write_packing(packing, opt->out, w);
-    if (!opt->quiet)
-      fmt::print("wrote {} particles ({} lattice, volume fraction {:.4f}) to {}\n", packing.size(), opt->o.type,
-                 packing.volume_fraction(), opt->out);
-  });
+  CommandParts parts;
+  parts.output = "Output file (format by extension: .xyz .vtu .data .csv .txt)";
+  add_option_command(generate, "lattice", "Cubic lattice (sc, bcc, fcc) in a matching periodic box",
+                     io::lattice_options, parts, [](const OptionCommand<io::LatticeOptions>& c) {
+                       const generate::LatticeParams p = c.settings.params();
+                       const Packing packing = generate::make_lattice(p);
+                       io::WriteOptions w;
+                       w.comment = fmt::format(
+                           "packlab generate lattice --type {} --cells {} {} {} --radius {:.17g} --gap {:.17g}",
+                           c.settings.type, p.cells[0], p.cells[1], p.cells[2], p.radius, p.gap);
+                       io::write_packing(packing, c.out, w);
+                       if (!c.quiet)
+                         fmt::print("wrote {} particles ({} lattice, volume fraction {:.4f}) to {}\n", packing.size(),
+                                    c.settings.type, packing.volume_fraction(), c.out);
+                     });
 }
 
 }  // namespace packlab::cli

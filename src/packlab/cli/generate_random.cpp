@@ -12,39 +12,24 @@
 
 namespace packlab::cli {
 
-std::string random_config_reference() {
-  io::RandomOptions o;
-  return io::random_options(o).markdown();
-}
-
 void add_generate_random(CLI::App& generate) {
-  struct Options {
-    io::RandomOptions o;
-    std::unique_ptr<OptionFlags> flags;
-    std::string out;
-    bool quiet = false;
-  };
-  auto opt = std::make_shared<Options>();
-  auto* cmd = generate.add_subcommand(
-      "random", "Uniform random spheres (overlaps allowed) or random sequential addition (--no-overlap)");
-  opt->flags = std::make_unique<OptionFlags>(cmd, io::random_options(opt->o));
-  cmd->add_option("--out", opt->out, "Output file (format by extension)")->required();
-  cmd->add_flag("--quiet", opt->quiet, "No progress output");
-  cmd->callback([opt] {
-    opt->flags->load();
-    const generate::RandomPackingParams p = opt->o.params();
-    Random rng(opt->o.seed);
-    const Packing packing = generate::make_random_packing(p, rng);
-    opt->flags->schema().validate();
-    io::WriteOptions w;
-    w.comment = fmt::format("packlab generate random --particles {} --radius {:.17g} --phi {:.17g}{} --seed {}",
-                            p.particles, p.radius, p.volume_fraction, opt->o.no_overlap ? " --no-overlap" : "",
-                            opt->o.seed);
-    io::write_packing(packing, opt->out, w);
-    if (!opt->quiet)
-      fmt::print("wrote {} particles (volume fraction {:.4f}) to {}\n", packing.size(), packing.volume_fraction(),
-                 opt->out);
-  });
+  CommandParts parts;
+  parts.output = "Output file (format by extension)";
+  add_option_command(
+      generate, "random", "Uniform random spheres (overlaps allowed) or random sequential addition (--no-overlap)",
+      io::random_options, parts, [](const OptionCommand<io::RandomOptions>& c) {
+        const generate::RandomPackingParams p = c.settings.params();
+        Random rng(c.settings.seed);
+        const Packing packing = generate::make_random_packing(p, rng);
+        io::WriteOptions w;
+        w.comment = fmt::format("packlab generate random --particles {} --radius {:.17g} --phi {:.17g}{} --seed {}",
+                                p.particles, p.radius, p.volume_fraction, c.settings.no_overlap ? " --no-overlap" : "",
+                                c.settings.seed);
+        io::write_packing(packing, c.out, w);
+        if (!c.quiet)
+          fmt::print("wrote {} particles (volume fraction {:.4f}) to {}\n", packing.size(), packing.volume_fraction(),
+                     c.out);
+      });
 }
 
 }  // namespace packlab::cli

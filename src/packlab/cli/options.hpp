@@ -92,4 +92,56 @@ class OptionFlags {
   std::vector<CLI::Option*> options_;
 };
 
+// A command whose options are one option set: the struct the set binds, the flags with
+// --config, and the files and switches every such command has.
+template <class Settings>
+struct OptionCommand {
+  Settings settings;
+  std::string in, out;  // the input file (if the command takes one) and --out
+  bool quiet = false, no_plots = false;
+  std::unique_ptr<OptionFlags> flags;
+};
+
+// What a command adds around its option set, as the help texts of its arguments.
+struct CommandParts {
+  const char* input = nullptr;     // the positional input file; null: none
+  const char* output = nullptr;    // --out (required)
+  bool output_positional = false;  // OUT after IN instead of --out
+  bool plots = false;              // --no-plots
+  bool validate = true;            // check every option against its range before running
+};
+
+// Adds subcommand `name` of `parent`: input, the option set `declare(settings)` with --config,
+// the output, --no-plots, --quiet. When the command runs, the file and then the flags are read
+// (default < file < flag), the ranges checked, and `run(command)` called. Returns the
+// subcommand (for further flags, whose storage the caller keeps).
+template <class Settings, class Run>
+CLI::App* add_option_command(CLI::App& parent, const std::string& name, const std::string& summary,
+                             io::ConfigSchema (*declare)(Settings&), const CommandParts& parts, Run run) {
+  auto command = std::make_shared<OptionCommand<Settings>>();
+  CLI::App* cmd = parent.add_subcommand(name, summary);
+  if (parts.input != nullptr) cmd->add_option("in", command->in, parts.input)->required();
+  if (parts.output != nullptr && parts.output_positional)
+    cmd->add_option("out", command->out, parts.output)->required();
+  command->flags = std::make_unique<OptionFlags>(cmd, declare(command->settings));
+  if (parts.output != nullptr && !parts.output_positional)
+    cmd->add_option("--out", command->out, parts.output)->required();
+  if (parts.plots) cmd->add_flag("--no-plots", command->no_plots, "Do not make PNG plots");
+  cmd->add_flag("--quiet", command->quiet, "No progress output");
+  const bool validate = parts.validate;
+  cmd->callback([command, run, validate] {
+    command->flags->load();
+    if (validate) command->flags->schema().validate();
+    run(*command);
+  });
+  return cmd;
+}
+
+// The reference table of an option set (`packlab config-keys`, docs/config-reference.md).
+template <class Settings>
+std::string option_reference(io::ConfigSchema (*declare)(Settings&)) {
+  Settings defaults;
+  return declare(defaults).markdown();
+}
+
 }  // namespace packlab::cli

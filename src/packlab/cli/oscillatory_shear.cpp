@@ -7,6 +7,8 @@
 // Writes DIR/stress_strain.csv (every sample), DIR/cycles.csv (per cycle and orientation),
 // DIR/shear.png (Fig. 4), DIR/relaxed.vtu (the tested structure with its bonds) and
 // DIR/report.json.
+#include "packlab/mechanics/oscillatory_shear.hpp"
+
 #include <fmt/format.h>
 
 #include <cmath>
@@ -24,14 +26,8 @@
 #include "packlab/io/plot.hpp"
 #include "packlab/io/report.hpp"
 #include "packlab/io/table.hpp"
-#include "packlab/mechanics/oscillatory_shear.hpp"
 
 namespace packlab::cli {
-
-std::string shear_config_reference() {
-  io::ShearTestRun r;
-  return io::shear_test_options(r).markdown();
-}
 
 namespace {
 
@@ -110,73 +106,67 @@ nlohmann::json shear_result_json(const mechanics::OscillatoryShearResult& result
 }  // namespace
 
 void add_test_shear(CLI::App& test) {
-  struct Options {
-    std::string in, out;
-    io::ShearTestRun run;
-    std::unique_ptr<OptionFlags> flags;
-    bool quiet = false, no_plots = false;
-  };
-  auto opt = std::make_shared<Options>();
-  auto* cmd = test.add_subcommand(
-      "shear", "Oscillatory shear test of a bonded model: storage modulus G' for six orientations (docs/shear.md)");
-  cmd->add_option("in", opt->in, "Bonded model (a file with bonds, e.g. from packlab bond)")->required();
-  cmd->add_option("--out", opt->out, "Output folder")->required();
-  opt->flags = std::make_unique<OptionFlags>(cmd, io::shear_test_options(opt->run));
-  cmd->add_flag("--no-plots", opt->no_plots, "Do not draw the PNG plot");
-  cmd->add_flag("--quiet", opt->quiet, "No progress output");
-  cmd->callback([opt] {
-    opt->flags->load();
-    mechanics::OscillatoryShearOptions options = opt->run.test;
-    mechanics::validate(options);
-    const Packing packing = io::read_packing(opt->in);
-    const std::filesystem::path dir = opt->out;
-    io::ensure_directory(dir);
-    const long per_run = options.steps_per_cycle * options.cycles;
-    const auto orientations = mechanics::shear_orientations(options.orientations);
-    Progress progress("test shear", per_run * static_cast<long>(orientations.size()), !opt->quiet);
-    std::string current;
-    long offset = 0, last = 0;
-    options.progress = [&](const std::string& stage, long done, long) {
-      if (stage == "relax") {
-        progress.update(0, fmt::format("relaxing, step {}", done));
-        return;
-      }
-      if (stage != current) {
-        if (!current.empty()) offset += last;
-        current = stage;
-      }
-      last = done;
-      progress.update(offset + done, "orientation " + stage);
-    };
-    const mechanics::OscillatoryShearResult result = mechanics::run_oscillatory_shear(packing, options);
-    progress.finish();
+  CommandParts parts;
+  parts.input = "Bonded model (a file with bonds, e.g. from packlab bond)";
+  parts.output = "Output folder";
+  parts.plots = true;
+  add_option_command(
+      test, "shear",
+      "Oscillatory shear test of a bonded model: storage modulus G' for six orientations (docs/shear.md)",
+      io::shear_test_options, parts, [](const OptionCommand<io::ShearTestRun>& c) {
+        mechanics::OscillatoryShearOptions options = c.settings.test;
+        mechanics::validate(options);
+        const Packing packing = io::read_packing(c.in);
+        const std::filesystem::path dir = c.out;
+        io::ensure_directory(dir);
+        const long per_run = options.steps_per_cycle * options.cycles;
+        const auto orientations = mechanics::shear_orientations(options.orientations);
+        Progress progress("test shear", per_run * static_cast<long>(orientations.size()), !c.quiet);
+        std::string current;
+        long offset = 0, last = 0;
+        options.progress = [&](const std::string& stage, long done, long) {
+          if (stage == "relax") {
+            progress.update(0, fmt::format("relaxing, step {}", done));
+            return;
+          }
+          if (stage != current) {
+            if (!current.empty()) offset += last;
+            current = stage;
+          }
+          last = done;
+          progress.update(offset + done, "orientation " + stage);
+        };
+        const mechanics::OscillatoryShearResult result = mechanics::run_oscillatory_shear(packing, options);
+        progress.finish();
 
-    io::write_text_atomically(dir / "stress_strain.csv", stress_strain_csv(result, options.regions));
-    io::write_text_atomically(dir / "cycles.csv", cycles_csv(result));
-    io::WriteOptions w;
-    w.comment = fmt::format("packlab test shear {}: relaxed structure that was tested", opt->in);
-    io::write_packing(result.relaxed_packing, dir / "relaxed.vtu", w);
-    nlohmann::json report = io::report_header("test shear");
-    report["input"] = opt->in;
-    report["particles"] = packing.size();
-    report["bonds"] = packing.bonds.size();
-    report["parameters"] = opt->flags->schema().json();
-    report.update(shear_result_json(result));
-    io::write_report(dir / "report.json", report);
-    io::PlotOptions plot;
-    plot.enabled = !opt->no_plots && opt->run.plots;
-    io::make_plot("shear", {(dir / "stress_strain.csv").string()}, dir / "shear.png", plot);
-    if (!opt->quiet) {
-      for (const auto& r : result.runs)
-        fmt::print("{}: G' = {:.4g} Pa (|G*| {:.4g} Pa, plate {:.4g} Pa), phase angle {:.3g} rad, {} bonds broken\n",
-                   mechanics::orientation_name(r.orientation), r.storage_modulus, r.complex_modulus,
-                   r.plate_storage_modulus, r.phase_angle, r.broken_bonds);
-      fmt::print("G' = {:.4g} +- {:.3g} Pa over {} orientations, phase angle {:.3g} rad; {:.1f} s ({:.3g} "
-                 "particle-steps/s); wrote {}\n",
-                 result.storage_modulus_mean, result.storage_modulus_std, result.runs.size(), result.phase_angle_mean,
-                 result.seconds, result.seconds > 0 ? result.particle_steps / result.seconds : 0.0, dir.string());
-    }
-  });
+        io::write_text_atomically(dir / "stress_strain.csv", stress_strain_csv(result, options.regions));
+        io::write_text_atomically(dir / "cycles.csv", cycles_csv(result));
+        io::WriteOptions w;
+        w.comment = fmt::format("packlab test shear {}: relaxed structure that was tested", c.in);
+        io::write_packing(result.relaxed_packing, dir / "relaxed.vtu", w);
+        nlohmann::json report = io::report_header("test shear");
+        report["input"] = c.in;
+        report["particles"] = packing.size();
+        report["bonds"] = packing.bonds.size();
+        report["parameters"] = c.flags->schema().json();
+        report.update(shear_result_json(result));
+        io::write_report(dir / "report.json", report);
+        io::PlotOptions plot;
+        plot.enabled = !c.no_plots && c.settings.plots;
+        io::make_plot("shear", {(dir / "stress_strain.csv").string()}, dir / "shear.png", plot);
+        if (!c.quiet) {
+          for (const auto& r : result.runs)
+            fmt::print(
+                "{}: G' = {:.4g} Pa (|G*| {:.4g} Pa, plate {:.4g} Pa), phase angle {:.3g} rad, {} bonds broken\n",
+                mechanics::orientation_name(r.orientation), r.storage_modulus, r.complex_modulus,
+                r.plate_storage_modulus, r.phase_angle, r.broken_bonds);
+          fmt::print(
+              "G' = {:.4g} +- {:.3g} Pa over {} orientations, phase angle {:.3g} rad; {:.1f} s ({:.3g} "
+              "particle-steps/s); wrote {}\n",
+              result.storage_modulus_mean, result.storage_modulus_std, result.runs.size(), result.phase_angle_mean,
+              result.seconds, result.seconds > 0 ? result.particle_steps / result.seconds : 0.0, dir.string());
+        }
+      });
 }
 
 }  // namespace packlab::cli

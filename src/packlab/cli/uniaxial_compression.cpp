@@ -6,6 +6,8 @@
 // over any packing). Writes DIR/report.json ({"youngs_modulus", "strength", "broken_bonds", ...}
 // in SI), curve.csv, bond_strain.csv, particle_stress.csv, broken_bonds.csv/.vtu, model.vtu and
 // the plots. Flags override the config file.
+#include "packlab/mechanics/uniaxial_compression.hpp"
+
 #include <fmt/format.h>
 
 #include <filesystem>
@@ -23,66 +25,54 @@
 #include "packlab/io/packing_io.hpp"
 #include "packlab/io/report.hpp"
 #include "packlab/mechanics/opal_materials.hpp"
-#include "packlab/mechanics/uniaxial_compression.hpp"
 
 namespace packlab::cli {
 
-std::string compress_config_reference() {
-  mechanics::UniaxialCompressionSetup s;
-  return io::compression_test_options(s).markdown();
-}
-
 void add_test_compress(CLI::App& test) {
-  struct Options {
-    std::string in, out;
-    mechanics::UniaxialCompressionSetup setup;
-    std::unique_ptr<OptionFlags> flags;
-    bool quiet = false, no_plots = false, no_vtu = false;
-  };
-  auto opt = std::make_shared<Options>();
-  auto* cmd = test.add_subcommand("compress",
-                                  "Uniaxial compression of a bonded model by a plate moving down at a set strain rate");
-  cmd->add_option("in", opt->in, "Bonded model (.vtu from `packlab build opal` or `packlab bond`)")->required();
-  cmd->add_option("--out", opt->out, "Output folder")->required();
-  opt->flags = std::make_unique<OptionFlags>(cmd, io::compression_test_options(opt->setup));
-  cmd->add_flag("--no-plots", opt->no_plots, "Do not make PNG plots");
-  cmd->add_flag("--no-vtu", opt->no_vtu, "Do not write the final model (model.vtu)");
-  cmd->add_flag("--quiet", opt->quiet, "No progress output");
-  cmd->callback([opt] {
-    opt->flags->load();
-    const Packing model = io::read_packing(opt->in);
-    mechanics::UniaxialCompressionSetup& s = opt->setup;
-    s.finish(model);
-    s.options.validate();
-    const std::filesystem::path dir = opt->out;
-    io::ensure_directory(dir);
-    Progress progress("compress", 1000, !opt->quiet);
-    const double max_strain = s.options.max_strain;
-    s.options.on_point = [&](const mechanics::UniaxialCompressionPoint& p) {
-      progress.update(static_cast<long>(1000.0 * p.strain / max_strain),
-                      fmt::format("strain {:.4f}, stress {:.4g} MPa, broken {}", p.strain, p.stress * 1e-6, p.broken_bonds));
-    };
-    const mechanics::UniaxialCompressionResult r = mechanics::run_uniaxial_compression(model, s.options);
-    progress.finish();
-    nlohmann::json report = io::report_header("test compress");
-    report["input"] = opt->in;
-    report["parameters"] = opt->flags->schema().json();
-    report.update(uniaxial_compression_report(r, s.options));
-    write_uniaxial_compression_outputs(r, s.options, dir, !opt->no_plots, !opt->no_vtu);
-    io::write_report(dir / "report.json", report);
-    if (!opt->quiet) {
-      fmt::print("{} particles ({} fixed), {} bonds ({} left out), H0 = {:.4g} m, A = {:.4g} m^2\n", r.particles,
-                 r.fixed_particles, r.bonds, r.dropped_bonds, r.height, r.area);
-      fmt::print("strain rate {:.4g} 1/s, time step {:.4g} s, {} steps; {}\n", s.options.strain_rate, r.time_step, r.steps,
-                 r.stop_reason);
-      fmt::print("Young's modulus {:.5g} GPa (fit over strain {:.4g}..{:.4g}), strength {:.5g} MPa at strain {:.4g}, "
-                 "{} broken bonds\n",
-                 r.youngs_modulus * 1e-9, r.modulus.strain_begin, r.modulus.strain_end, r.strength * 1e-6, r.strain_at_peak,
-                 r.broken_bonds);
-      fmt::print("max kinetic / strain energy before the peak {:.3g}; wrote {} in {:.1f} s\n", r.max_kinetic_ratio,
-                 (dir / "report.json").string(), r.seconds);
-    }
-  });
+  auto no_vtu = std::make_shared<bool>(false);
+  CommandParts parts;
+  parts.input = "Bonded model (.vtu from `packlab build opal` or `packlab bond`)";
+  parts.output = "Output folder";
+  parts.plots = true;
+  CLI::App* cmd = add_option_command(
+      test, "compress", "Uniaxial compression of a bonded model by a plate moving down at a set strain rate",
+      io::compression_test_options, parts, [no_vtu](const OptionCommand<mechanics::UniaxialCompressionSetup>& c) {
+        const Packing model = io::read_packing(c.in);
+        mechanics::UniaxialCompressionSetup s = c.settings;
+        s.finish(model);
+        s.options.validate();
+        const std::filesystem::path dir = c.out;
+        io::ensure_directory(dir);
+        Progress progress("compress", 1000, !c.quiet);
+        const double max_strain = s.options.max_strain;
+        s.options.on_point = [&](const mechanics::UniaxialCompressionPoint& p) {
+          progress.update(
+              static_cast<long>(1000.0 * p.strain / max_strain),
+              fmt::format("strain {:.4f}, stress {:.4g} MPa, broken {}", p.strain, p.stress * 1e-6, p.broken_bonds));
+        };
+        const mechanics::UniaxialCompressionResult r = mechanics::run_uniaxial_compression(model, s.options);
+        progress.finish();
+        nlohmann::json report = io::report_header("test compress");
+        report["input"] = c.in;
+        report["parameters"] = c.flags->schema().json();
+        report.update(uniaxial_compression_report(r, s.options));
+        write_uniaxial_compression_outputs(r, s.options, dir, !c.no_plots, !*no_vtu);
+        io::write_report(dir / "report.json", report);
+        if (!c.quiet) {
+          fmt::print("{} particles ({} fixed), {} bonds ({} left out), H0 = {:.4g} m, A = {:.4g} m^2\n", r.particles,
+                     r.fixed_particles, r.bonds, r.dropped_bonds, r.height, r.area);
+          fmt::print("strain rate {:.4g} 1/s, time step {:.4g} s, {} steps; {}\n", s.options.strain_rate, r.time_step,
+                     r.steps, r.stop_reason);
+          fmt::print(
+              "Young's modulus {:.5g} GPa (fit over strain {:.4g}..{:.4g}), strength {:.5g} MPa at strain {:.4g}, "
+              "{} broken bonds\n",
+              r.youngs_modulus * 1e-9, r.modulus.strain_begin, r.modulus.strain_end, r.strength * 1e-6,
+              r.strain_at_peak, r.broken_bonds);
+          fmt::print("max kinetic / strain energy before the peak {:.3g}; wrote {} in {:.1f} s\n", r.max_kinetic_ratio,
+                     (dir / "report.json").string(), r.seconds);
+        }
+      });
+  cmd->add_flag("--no-vtu", *no_vtu, "Do not write the final model (model.vtu)");
 }
 
 }  // namespace packlab::cli
