@@ -3,6 +3,7 @@
 // callback that re-acquires the GIL, and conversions of small vectors.
 #pragma once
 
+#include <nlohmann/json.hpp>
 #include <pybind11/functional.h>
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
@@ -143,6 +144,12 @@ inline io::ConfigSchema apply_keywords(io::ConfigSchema schema, const py::kwargs
     io::ConfigSchema::set(*field, v, name);
   }
   return schema;
+}
+
+// A JSON value (a report block, io/mechanics_report.hpp) as Python objects: the dicts the
+// functions return carry the same keys as the command's report.json.
+inline py::object json_to_python(const nlohmann::json& value) {
+  return py::module_::import("json").attr("loads")(value.dump());
 }
 
 // The keyword list of a docstring: one line per option of the set.

@@ -9,6 +9,7 @@
 #include "columns.hpp"
 #include "common.hpp"
 #include "packlab/generate/bonding.hpp"
+#include "packlab/io/mechanics_report.hpp"
 #include "packlab/io/options.hpp"
 #include "packlab/mechanics/oscillatory_shear.hpp"
 #include "packlab/mechanics/shear_calibration.hpp"
@@ -19,46 +20,17 @@ namespace {
 
 using mechanics::OscillatoryShearOptions;
 
+// The command's report block, with each orientation's samples and cycles as arrays and the
+// relaxed structure.
 py::dict result_dict(const mechanics::OscillatoryShearResult& r, int regions) {
-  py::list per;
-  for (const auto& run : r.runs) {
-    py::dict d;
-    d["orientation"] = mechanics::orientation_name(run.orientation);
-    d["storage_modulus"] = run.storage_modulus;
-    d["complex_modulus"] = run.complex_modulus;
-    d["phase_angle"] = run.phase_angle;
-    d["plate_storage_modulus"] = run.plate_storage_modulus;
-    d["broken_bonds"] = run.broken_bonds;
-    d["max_bond_shear_force"] = run.max_bond_shear_force;
-    d["max_bond_tension"] = run.max_bond_tension;
-    d["max_kinetic_to_strain_energy"] = run.max_kinetic_to_strain;
-    d["time_step"] = run.time_step;
-    d["steps"] = run.steps;
-    d["seconds"] = run.seconds;
-    std::vector<double> g, delta;
-    for (const auto& c : run.cycles) {
-      g.push_back(c.storage_modulus);
-      delta.push_back(c.phase_angle);
-    }
-    d["cycle_storage_modulus"] = to_numpy(std::move(g));
-    d["cycle_phase_angle"] = to_numpy(std::move(delta));
-    d["samples"] = columns_dict(mechanics::shear_sample_columns(run.samples, static_cast<int>(regions)));
-    d["cycles"] = columns_dict(mechanics::shear_cycle_columns(run.cycles));
-    per.append(d);
+  py::dict out = json_to_python(io::oscillatory_shear_summary(r));
+  py::list per = out["storage_modulus"]["per_orientation"];
+  for (std::size_t k = 0; k < r.runs.size(); ++k) {
+    py::dict d = per[k];
+    d["samples"] = columns_dict(mechanics::shear_sample_columns(r.runs[k].samples, regions));
+    d["cycles"] = columns_dict(mechanics::shear_cycle_columns(r.runs[k].cycles));
   }
-  py::dict sm;
-  sm["mean"] = r.storage_modulus_mean;
-  sm["std"] = r.storage_modulus_std;
-  sm["per_orientation"] = per;
-  py::dict out;
-  out["storage_modulus"] = sm;
-  out["phase_angle"] = r.phase_angle_mean;
-  out["phase_angle_max_abs"] = r.phase_angle_max;
-  out["relaxation_steps"] = r.relaxed ? r.relax.steps : 0L;
-  out["relaxation_converged"] = r.relaxed && r.relax.converged;
   out["packing"] = r.relaxed_packing;
-  out["seconds"] = r.seconds;
-  out["particle_steps_per_second"] = r.seconds > 0.0 ? r.particle_steps / r.seconds : 0.0;
   return out;
 }
 
@@ -68,11 +40,11 @@ void bind_oscillatory_shear(py::module_& m) {
   io::ShearTestRun test_defaults;
   static const std::string shear_doc = R"doc(
 `packlab test shear` from Python: the oscillatory shear test of a bonded periodic packing
-(doh-elastic-properties §2.4). Returns a dict: storage_modulus {mean, std, per_orientation: [{orientation,
-storage_modulus, complex_modulus, phase_angle, plate_storage_modulus, broken_bonds, cycle_storage_modulus,
-cycle_phase_angle, samples: {cycle, step, time, phase, strain, stress, plate_stress, region_k, ...},
-cycles: {cycle, strain_amplitude, ..., storage_modulus, ...}}]} [Pa],
-phase_angle [rad], packing (the relaxed structure), seconds. The keywords are the options of the
+(doh-elastic-properties §2.4). Returns the results of the command's report.json as a dict:
+storage_modulus {mean, std, unit, per_orientation: [{orientation, storage_modulus, complex_modulus,
+phase_angle, plate_storage_modulus, broken_bonds, ..., samples: {cycle, step, time, phase, strain,
+stress, plate_stress, region_k, ...}, cycles: {cycle, strain_amplitude, ..., storage_modulus, ...}}]}
+[Pa], phase_angle [rad], bonds, relaxation, seconds; and packing (the relaxed structure). The keywords are the options of the
 command; stiffnesses [N/m] are particle stiffnesses under stiffness_rule "particle" (contacts and
 bonds act with k/2). progress(stage, done, total) is called with the GIL held at most every
 progress_interval seconds.

@@ -11,6 +11,7 @@
 #include "packlab/analyze/porosity_laws.hpp"
 #include "packlab/core/error.hpp"
 #include "packlab/core/packing.hpp"
+#include "packlab/io/mechanics_report.hpp"
 #include "packlab/io/options.hpp"
 #include "packlab/mechanics/compression_calibration.hpp"
 #include "packlab/mechanics/opal_materials.hpp"
@@ -149,21 +150,13 @@ strength) is called after each simulation.
         apply_keywords(io::compression_calibration_options(run), kwargs, "calibrate_compress").validate();
         mechanics::UniaxialCompressionSetup& s = run.setup;
         finish_setup(s, model);
-        py::dict d;
         if (run.bulk_factor) {
           mechanics::BulkFactorResult b;
           {
             py::gil_scoped_release nogil;
             b = mechanics::compression_bulk_factor(model, s);
           }
-          d["mode"] = "bulk_factor";
-          d["bond_youngs_modulus"] = s.materials.silica_youngs_modulus;
-          d["bond_strength"] = s.materials.silica_strength;
-          d["bulk_factor"] = b.bulk_factor;
-          d["strength_ratio"] = b.strength_ratio;
-          d["strength_factor"] = b.strength_factor;
-          d["youngs_modulus"] = b.run.youngs_modulus;
-          d["strength"] = b.run.strength;
+          py::dict d = json_to_python(io::bulk_factor_summary(b, s));
           d["final"] = py::cast(std::move(b.run));
           return d;
         }
@@ -179,17 +172,8 @@ strength) is called after each simulation.
           result = mechanics::calibrate_compression(model, s, run.target_youngs_modulus, run.target_strength,
                                                     run.calibration, on_run);
         }
-        const mechanics::CalibrationResult& c = result.calibration;
-        d["mode"] = "calibrate";
-        d["converged"] = c.converged;
-        d["reason"] = c.reason();
-        d["iterations"] = c.iterations;
-        d["simulations"] = c.evaluations;
-        d["bond_youngs_modulus"] = c.parameters[0];
-        d["bond_strength"] = c.parameters[1];
-        d["youngs_modulus"] = c.responses[0];
-        d["strength"] = c.responses[1];
-        d["history"] = columns_dict(mechanics::calibration_history_columns(c));
+        py::dict d = json_to_python(io::compression_calibration_summary(result, run.calibration));
+        d["history"] = columns_dict(mechanics::calibration_history_columns(result.calibration));
         d["final"] = result.has_final ? py::cast(std::move(result.final)) : py::object(py::none());
         return d;
       },

@@ -20,6 +20,7 @@
 #include "packlab/cli/uniaxial_compression_output.hpp"
 #include "packlab/core/error.hpp"
 #include "packlab/io/atomic_file.hpp"
+#include "packlab/io/mechanics_report.hpp"
 #include "packlab/io/options.hpp"
 #include "packlab/io/packing_io.hpp"
 #include "packlab/io/report.hpp"
@@ -27,21 +28,6 @@
 #include "packlab/mechanics/compression_calibration.hpp"
 
 namespace packlab::cli {
-
-namespace {
-
-nlohmann::json history_json(const mechanics::CalibrationResult& c) {
-  nlohmann::json history = nlohmann::json::array();
-  for (const auto& h : c.history)
-    history.push_back({{"bond_youngs_modulus", h.parameters[0]},
-                       {"bond_strength", h.parameters[1]},
-                       {"youngs_modulus", h.responses[0]},
-                       {"strength", h.responses[1]},
-                       {"finite_difference", h.finite_difference}});
-  return history;
-}
-
-}  // namespace
 
 void add_calibrate_compress(CLI::App& calibrate) {
   CommandParts parts;
@@ -70,15 +56,7 @@ void add_calibrate_compress(CLI::App& calibrate) {
           const mechanics::BulkFactorResult b = mechanics::compression_bulk_factor(model, s);
           const mechanics::UniaxialCompressionResult& r = b.run;
           write_uniaxial_compression_outputs(r, s.options, dir / "final", !command.no_plots, false);
-          report["mode"] = "bulk_factor";
-          report["bond_youngs_modulus"] = s.materials.silica_youngs_modulus;
-          report["bond_strength"] = s.materials.silica_strength;
-          report["bulk_factor"] = b.bulk_factor;
-          report["strength_ratio"] = b.strength_ratio;
-          report["strength_factor"] = b.strength_factor;
-          report["compression"] = uniaxial_compression_report(r, s.options);
-          report["youngs_modulus"] = r.youngs_modulus;
-          report["strength"] = r.strength;
+          report.update(io::bulk_factor_summary(b, s));
           io::write_report(dir / "report.json", report);
           if (!command.quiet)
             fmt::print(
@@ -103,17 +81,7 @@ void add_calibrate_compress(CLI::App& calibrate) {
         io::write_text_atomically(dir / "calibration.csv", io::to_csv(history));
         if (result.has_final)
           write_uniaxial_compression_outputs(result.final, s.options, dir / "final", !command.no_plots, false);
-        report["mode"] = "calibrate";
-        report["scheme"] =
-            run.full_jacobian ? "full finite-difference Jacobian" : "diagonal (paper: dE/dsigma = dS/dE_b = 0)";
-        report["converged"] = c.converged;
-        report["iterations"] = c.iterations;
-        report["simulations"] = c.evaluations;
-        report["bond_youngs_modulus"] = c.parameters[0];
-        report["bond_strength"] = c.parameters[1];
-        report["youngs_modulus"] = c.responses[0];
-        report["strength"] = c.responses[1];
-        report["history"] = history_json(c);
+        report.update(io::compression_calibration_summary(result, run.calibration));
         io::write_report(dir / "report.json", report);
         if (!command.quiet)
           fmt::print("{}: E_b = {:.6g} GPa, sigma_max = {:.6g} MPa give E = {:.6g} GPa, strength = {:.6g} MPa\n",

@@ -21,6 +21,7 @@
 #include "packlab/core/error.hpp"
 #include "packlab/core/progress.hpp"
 #include "packlab/io/atomic_file.hpp"
+#include "packlab/io/mechanics_report.hpp"
 #include "packlab/io/options.hpp"
 #include "packlab/io/packing_io.hpp"
 #include "packlab/io/plot.hpp"
@@ -46,62 +47,6 @@ std::string cycles_csv(const mechanics::OscillatoryShearResult& result) {
   return csv;
 }
 
-nlohmann::json shear_result_json(const mechanics::OscillatoryShearResult& result) {
-  nlohmann::json per = nlohmann::json::array();
-  double plate_mean = 0.0;
-  std::size_t broken = 0;
-  double shear_ratio = 0.0, tension_ratio = 0.0, ke = 0.0;
-  for (const auto& r : result.runs) {
-    per.push_back({{"orientation", mechanics::orientation_name(r.orientation)},
-                   {"plate_normal", std::string(1, "xyz"[r.orientation.normal])},
-                   {"shear_direction", std::string(1, "xyz"[r.orientation.direction])},
-                   {"storage_modulus", r.storage_modulus},
-                   {"complex_modulus", r.complex_modulus},
-                   {"phase_angle", r.phase_angle},
-                   {"plate_storage_modulus", r.plate_storage_modulus},
-                   {"broken_bonds", r.broken_bonds},
-                   {"max_bond_shear_force", r.max_bond_shear_force},
-                   {"max_bond_tension", r.max_bond_tension},
-                   {"max_kinetic_to_strain_energy", r.max_kinetic_to_strain},
-                   {"settle_steps", r.settle.steps},
-                   {"structure_particles", r.structure_particles},
-                   {"plate_particles", r.plate_particles},
-                   {"bonds", r.bonds},
-                   {"time_step", r.time_step},
-                   {"steps", r.steps},
-                   {"seconds", r.seconds}});
-    plate_mean += r.plate_storage_modulus;
-    broken += r.broken_bonds;
-    shear_ratio = std::max(shear_ratio, r.max_bond_shear_ratio);
-    tension_ratio = std::max(tension_ratio, r.max_bond_tension_ratio);
-    ke = std::max(ke, r.max_kinetic_to_strain);
-  }
-  plate_mean /= static_cast<double>(std::max<std::size_t>(result.runs.size(), 1));
-  nlohmann::json j;
-  j["storage_modulus"] = {{"mean", result.storage_modulus_mean},
-                          {"std", result.storage_modulus_std},
-                          {"per_orientation", per},
-                          {"unit", "Pa"}};
-  j["phase_angle"] = result.phase_angle_mean;
-  j["phase_angle_unit"] = "rad";
-  j["phase_angle_over_pi"] = result.phase_angle_mean / std::numbers::pi;
-  j["phase_angle_max_abs"] = result.phase_angle_max;
-  j["plate_storage_modulus_mean"] = plate_mean;
-  j["bonds"] = {{"broken_during_loading", broken},
-                {"max_shear_force_over_strength", shear_ratio},
-                {"max_tension_over_strength", tension_ratio}};
-  j["max_kinetic_to_strain_energy"] = ke;
-  if (result.relaxed)
-    j["relaxation"] = {{"steps", result.relax.steps},
-                       {"converged", result.relax.converged},
-                       {"initial_mean_unbalanced_force", result.relax.initial_unbalanced_force},
-                       {"final_mean_unbalanced_force", result.relax.final_unbalanced_force},
-                       {"reason", result.relax.reason()}};
-  j["seconds"] = result.seconds;
-  j["particle_steps"] = result.particle_steps;
-  j["particle_steps_per_second"] = result.seconds > 0.0 ? result.particle_steps / result.seconds : 0.0;
-  return j;
-}
 
 }  // namespace
 
@@ -149,7 +94,7 @@ void add_test_shear(CLI::App& test) {
         report["particles"] = packing.size();
         report["bonds"] = packing.bonds.size();
         report["parameters"] = c.flags->schema().json();
-        report.update(shear_result_json(result));
+        report.update(io::oscillatory_shear_summary(result));
         io::write_report(dir / "report.json", report);
         io::PlotOptions plot;
         plot.enabled = !c.no_plots && c.settings.plots;

@@ -21,6 +21,7 @@
 #include "packlab/core/error.hpp"
 #include "packlab/core/progress.hpp"
 #include "packlab/io/atomic_file.hpp"
+#include "packlab/io/mechanics_report.hpp"
 #include "packlab/io/options.hpp"
 #include "packlab/io/packing_io.hpp"
 #include "packlab/io/report.hpp"
@@ -55,7 +56,7 @@ void add_test_compress(CLI::App& test) {
         nlohmann::json report = io::report_header("test compress");
         report["input"] = c.in;
         report["parameters"] = c.flags->schema().json();
-        report.update(uniaxial_compression_report(r, s.options));
+        report.update(io::uniaxial_compression_summary(r, s.options));
         write_uniaxial_compression_outputs(r, s.options, dir, !c.no_plots, !*no_vtu);
         io::write_report(dir / "report.json", report);
         if (!c.quiet) {
