@@ -7,8 +7,8 @@
 #include <omp.h>
 
 #include <chrono>
-#include <numbers>
 #include <memory>
+#include <numbers>
 #include <sstream>
 
 #include "packlab/analyze/reference_rdf.hpp"
@@ -66,8 +66,12 @@ nlohmann::json write_rdf_outputs(const analyze::Rdf& rdf, const std::vector<doub
       const auto pk = rdf.peaks(k, m, 4);
       std::vector<double> scaled;
       for (double r : pk) scaled.push_back((r * a[0] - a[k]) / a[m] + 1.0);
-      contacts.push_back({{"k", k}, {"m", m}, {"contact_value", rdf.contact_value(k, m)},
-                          {"percus_yevick", py[k][m]}, {"peaks_R", pk}, {"peaks_R_km", scaled}});
+      contacts.push_back({{"k", k},
+                          {"m", m},
+                          {"contact_value", rdf.contact_value(k, m)},
+                          {"percus_yevick", py[k][m]},
+                          {"peaks_R", pk},
+                          {"peaks_R_km", scaled}});
     }
   out["pairs"] = contacts;
   out["contact_value"] = rdf.contact_value(0, 0);
@@ -108,15 +112,17 @@ nlohmann::json write_rdf_outputs(const analyze::Rdf& rdf, const std::vector<doub
     io::write_text_atomically(dir / "windows.csv", csv.str());
     double mean = 0.0, var = 0.0;
     for (std::size_t c = 0; c < p[0].size(); ++c) mean += static_cast<double>(c) * p[0][c];
-    for (std::size_t c = 0; c < p[0].size(); ++c) var += (static_cast<double>(c) - mean) * (static_cast<double>(c) - mean) * p[0][c];
-    out["windows"] = {{"radius_over_a", rdf.params().window_radius}, {"count", rdf.windows(-1)},
-                      {"mean", mean}, {"variance", var}};
+    for (std::size_t c = 0; c < p[0].size(); ++c)
+      var += (static_cast<double>(c) - mean) * (static_cast<double>(c) - mean) * p[0][c];
+    out["windows"] = {
+        {"radius_over_a", rdf.params().window_radius}, {"count", rdf.windows(-1)}, {"mean", mean}, {"variance", var}};
   }
   io::PlotOptions po;
   po.enabled = plots;
   std::vector<std::string> args{(dir / "rdf.csv").string(), "--phi", fmt::format("{:.6g}", c_total)};
   io::make_plot("rdf", args, dir / "rdf.png", po);
-  if (partial && nc > 1) io::make_plot("rdf_partial", {(dir / "rdf_partial.csv").string()}, dir / "rdf_partial.png", po);
+  if (partial && nc > 1)
+    io::make_plot("rdf_partial", {(dir / "rdf_partial.csv").string()}, dir / "rdf_partial.png", po);
   io::make_plot("windows", {(dir / "windows.csv").string()}, dir / "windows.png", po);
   return out;
 }
@@ -141,7 +147,8 @@ void add_analyze_rdf(CLI::App& analyze) {
   cmd->add_option("--window-radius", opt->params.window_radius,
                   "Histogram window radius in units of the centre particle's radius")
       ->capture_default_str();
-  cmd->add_option("--edge", opt->edge, "Edge correction: auto, toroidal, ripley, minus-sampling")->capture_default_str();
+  cmd->add_option("--edge", opt->edge, "Edge correction: auto, toroidal, ripley, minus-sampling")
+      ->capture_default_str();
   cmd->add_option("--threads", opt->params.threads, "OpenMP threads (0 = all)")->capture_default_str();
   cmd->add_option("--out", opt->out, "Output folder")->required();
   cmd->add_flag("--no-plots", opt->no_plots, "Do not write PNG plots");
@@ -180,8 +187,11 @@ void add_analyze_rdf(CLI::App& analyze) {
       for (std::size_t k = 0; k < c.size(); ++k) cvf[k] += c[k] / static_cast<double>(nf);
     }
     nlohmann::json report = io::report_header("analyze rdf");
-    report["parameters"] = {{"files", opt->files}, {"partial", opt->partial}, {"dr", opt->params.dr},
-                            {"rmax", opt->params.r_max}, {"window_radius", opt->params.window_radius},
+    report["parameters"] = {{"files", opt->files},
+                            {"partial", opt->partial},
+                            {"dr", opt->params.dr},
+                            {"rmax", opt->params.r_max},
+                            {"window_radius", opt->params.window_radius},
                             {"edge", opt->edge}};
     report["results"] = write_rdf_outputs(total, cvf, opt->out, opt->partial, !opt->no_plots);
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();

@@ -18,14 +18,14 @@
 namespace packlab::cli {
 
 void add_bond(CLI::App& app) {
-  CommandParts parts;
-  parts.input = "Input packing (any readable format)";
-  parts.output = "Output bonded model (.vtu: the format that stores bonds)";
   add_option_command(
       app, "bond",
       "Bond every pair closer than a cutoff (contact bonds of touching pairs, or elastic bonds within "
       "1.75 d)",
-      io::bond_options, parts, [](const OptionCommand<io::BondOptions>& c) {
+      io::bond_options,
+      {.input = "Input packing (any readable format)",
+       .output = "Output bonded model (.vtu: the format that stores bonds)"},
+      [](const OptionCommand<io::BondOptions>& c) {
         const io::BondOptions& o = c.settings;
         if (io::format_from_path(c.out) != io::Format::vtu)
           fail_input("--out = " + c.out + ": must end in .vtu (the format that stores bonds)");

@@ -29,14 +29,13 @@
 namespace packlab::cli {
 
 void add_build_opal(CLI::App& build) {
-  CommandParts parts;
-  parts.input = "Input particle packing (any readable format; e.g. from generate fba)";
-  parts.output = "Output folder";
   add_option_command(
       build, "opal",
       "Inverse-opal bonded-particle model: pores (FCC or random), coating, fixed substrate, bonds "
       "(bpm-inverse-opals §2.1)",
-      io::opal_build_options, parts, [](const OptionCommand<io::OpalBuildOptions>& c) {
+      io::opal_build_options,
+      {.input = "Input particle packing (any readable format; e.g. from generate fba)", .output = "Output folder"},
+      [](const OptionCommand<io::OpalBuildOptions>& c) {
         const auto t0 = std::chrono::steady_clock::now();
         const Packing in = io::read_packing(c.in);
         nlohmann::json pore_params;

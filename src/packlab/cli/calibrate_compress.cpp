@@ -30,14 +30,11 @@
 namespace packlab::cli {
 
 void add_calibrate_compress(CLI::App& calibrate) {
-  CommandParts parts;
-  parts.input = "Bonded model (.vtu)";
-  parts.output = "Output folder";
-  parts.plots = true;
   add_option_command(
       calibrate, "compress",
       "Calibrate bond Young's modulus and strength to a target (eq. 18-19), or the bulk factor K_E (eq. 20)",
-      io::compression_calibration_options, parts, [](const OptionCommand<io::CompressionCalibrationRun>& command) {
+      io::compression_calibration_options, {.input = "Bonded model (.vtu)", .output = "Output folder", .plots = true},
+      [](const OptionCommand<io::CompressionCalibrationRun>& command) {
         io::CompressionCalibrationRun run = command.settings;
         const Packing model = io::read_packing(command.in);
         mechanics::UniaxialCompressionSetup& s = run.setup;

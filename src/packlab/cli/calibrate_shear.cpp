@@ -23,12 +23,10 @@
 namespace packlab::cli {
 
 void add_calibrate_shear(CLI::App& calibrate) {
-  CommandParts parts;
-  parts.input = "Bonded model (a file with bonds)";
-  parts.output = "Output folder";
   add_option_command(
       calibrate, "shear", "Calibrate the particle normal stiffness k_n so that the storage modulus G' matches a target",
-      io::shear_calibration_options, parts, [](const OptionCommand<io::ShearCalibrationRun>& c) {
+      io::shear_calibration_options, {.input = "Bonded model (a file with bonds)", .output = "Output folder"},
+      [](const OptionCommand<io::ShearCalibrationRun>& c) {
         // The target is required: its default 0 is outside its range, so the range check stopped it.
         const io::ShearCalibrationRun& run = c.settings;
         const mechanics::OscillatoryShearOptions& options = run.test;

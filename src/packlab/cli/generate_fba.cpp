@@ -29,13 +29,10 @@
 namespace packlab::cli {
 
 void add_generate_fba(CLI::App& generate) {
-  CommandParts parts;
-  parts.output = "Output folder";
-  parts.plots = true;
   add_option_command(
       generate, "fba",
       "Force-biased algorithm: dense random sphere packing to a target porosity (0.38 in bpm-inverse-opals)",
-      io::fba_options, parts, [](const OptionCommand<io::FbaOptions>& c) {
+      io::fba_options, {.output = "Output folder", .plots = true}, [](const OptionCommand<io::FbaOptions>& c) {
         const auto t0 = std::chrono::steady_clock::now();
         const io::FbaOptions& o = c.settings;
         const io::FbaOptions::Setup setup = o.setup();

@@ -12,10 +12,9 @@
 namespace packlab::cli {
 
 void add_generate_lattice(CLI::App& generate) {
-  CommandParts parts;
-  parts.output = "Output file (format by extension: .xyz .vtu .data .csv .txt)";
   add_option_command(generate, "lattice", "Cubic lattice (sc, bcc, fcc) in a matching periodic box",
-                     io::lattice_options, parts, [](const OptionCommand<io::LatticeOptions>& c) {
+                     io::lattice_options, {.output = "Output file (format by extension: .xyz .vtu .data .csv .txt)"},
+                     [](const OptionCommand<io::LatticeOptions>& c) {
                        const generate::LatticeParams p = c.settings.params();
                        const Packing packing = generate::make_lattice(p);
                        io::WriteOptions w;

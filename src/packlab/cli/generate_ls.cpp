@@ -47,9 +47,7 @@ void add_ls_run_options(CLI::App& cmd, LsRunOptions& run, const io::ConfigSchema
   cmd.add_flag("--quiet", run.quiet, "No progress output");
 }
 
-void resolve_ls_run_options(LsRunOptions& run) {
-  run.flags->load();
-}
+void resolve_ls_run_options(LsRunOptions& run) { run.flags->load(); }
 
 io::ConfigSchema rdf_output_options(const std::string& command, analyze::RdfParams& rdf) {
   io::ConfigSchema schema(command);
@@ -152,10 +150,11 @@ void add_generate_ls(CLI::App& generate) {
     report["seconds"] = seconds;
     io::write_report(dir / "report.json", report);
     if (!run.quiet)
-      fmt::print("{}: phi {:.6f}, reduced pressure {:.3g}, {} collisions ({:.3g}/s, {:.3g} events/s); wrote {} in {:.2f} s\n",
-                 generate::ls_stop_name(st.stop), packing.volume_fraction(), st.reduced_pressure, st.collisions,
-                 static_cast<double>(st.collisions) / st.seconds, static_cast<double>(st.events()) / st.seconds,
-                 run.out, seconds);
+      fmt::print(
+          "{}: phi {:.6f}, reduced pressure {:.3g}, {} collisions ({:.3g}/s, {:.3g} events/s); wrote {} in {:.2f} s\n",
+          generate::ls_stop_name(st.stop), packing.volume_fraction(), st.reduced_pressure, st.collisions,
+          static_cast<double>(st.collisions) / st.seconds, static_cast<double>(st.events()) / st.seconds, run.out,
+          seconds);
   });
 }
 

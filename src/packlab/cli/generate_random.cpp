@@ -13,11 +13,10 @@
 namespace packlab::cli {
 
 void add_generate_random(CLI::App& generate) {
-  CommandParts parts;
-  parts.output = "Output file (format by extension)";
   add_option_command(
       generate, "random", "Uniform random spheres (overlaps allowed) or random sequential addition (--no-overlap)",
-      io::random_options, parts, [](const OptionCommand<io::RandomOptions>& c) {
+      io::random_options, {.output = "Output file (format by extension)"},
+      [](const OptionCommand<io::RandomOptions>& c) {
         const generate::RandomPackingParams p = c.settings.params();
         Random rng(c.settings.seed);
         const Packing packing = generate::make_random_packing(p, rng);

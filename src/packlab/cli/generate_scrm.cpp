@@ -45,9 +45,11 @@ void add_generate_scrm(CLI::App& generate) {
     const generate::LsStart start = generate::make_ls_start(o.particles, o.classes(), o.radius, o.phi, rng);
     generate::LsSimulation sim(start.box, start.points, start.unit_radius, sp.ls, rng);
     Progress progress("generate scrm", 0, !run.quiet);
-    const generate::ScrmResult r = run_scrm(sim, sp, rng, [&](const generate::LsStatus& ls, const generate::ShakeStats& s) {
-      progress.update(ls.blocks + s.sweeps, fmt::format("phi {:.5f}, {} global shakes", ls.volume_fraction, s.sweeps));
-    });
+    const generate::ScrmResult r =
+        run_scrm(sim, sp, rng, [&](const generate::LsStatus& ls, const generate::ShakeStats& s) {
+          progress.update(ls.blocks + s.sweeps,
+                          fmt::format("phi {:.5f}, {} global shakes", ls.volume_fraction, s.sweeps));
+        });
     progress.finish();
     const std::filesystem::path dir(run.out);
     write_packing_outputs(r.packing, dir,

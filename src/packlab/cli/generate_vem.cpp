@@ -38,9 +38,9 @@ namespace {
 
 // Settings of the command (not of the method); saved after the method's state in checkpoint.bin.
 struct RunSettings {
-  long snapshot_every = 0;          // 0 = no snapshots
-  double checkpoint_seconds = 120;  // wall-clock seconds between checkpoints
-  double window_widths = 4.0;       // inflection fit window, in logistic widths
+  long snapshot_every = 0;            // 0 = no snapshots
+  double checkpoint_seconds = 120;    // wall-clock seconds between checkpoints
+  double window_widths = 4.0;         // inflection fit window, in logistic widths
   double power_law_max_excess = 1.0;  // largest Phi_T - Phi_T,i in the beta fit
   bool plots = true;
 };
@@ -51,8 +51,9 @@ constexpr std::uint64_t settings_magic = 0x31544553434D4556ULL;  // "VEMCSET1"
 // packlab.generate_vem, which returns the curve for find_inflection()).
 io::ConfigSchema run_settings_options(RunSettings& s) {
   io::ConfigSchema schema("generate vem");
-  schema.integer("output.snapshot_every", s.snapshot_every,
-                 "Save the structural packing before every k-th increment (0 = never)")
+  schema
+      .integer("output.snapshot_every", s.snapshot_every,
+               "Save the structural packing before every k-th increment (0 = never)")
       .range(ranges::non_negative)
       .alias("snapshot_every")
       .command_only()
@@ -111,9 +112,9 @@ std::string curve_csv(const generate::Vem& vem) {
       "q,cn,phi_total,strain_energy,kinetic_energy,steps,cycle,unbalanced_force_ratio,converged\n",
       io::version(), p.structural, p.voids, p.phi_s, p.radius, p.seed, p.contact_eps);
   for (const auto& r : vem.curve())
-    csv += fmt::format("{:.17g},{:.17g},{:.17g},{:.17g},{:.17g},{},{},{:.6g},{}\n", r.q, r.cn, r.phi_total,
-                       r.strain_energy, r.kinetic_energy, r.steps, r.cycle, r.unbalanced_force_ratio,
-                       r.converged ? 1 : 0);
+    csv +=
+        fmt::format("{:.17g},{:.17g},{:.17g},{:.17g},{:.17g},{},{},{:.6g},{}\n", r.q, r.cn, r.phi_total,
+                    r.strain_energy, r.kinetic_energy, r.steps, r.cycle, r.unbalanced_force_ratio, r.converged ? 1 : 0);
   return csv;
 }
 
@@ -126,14 +127,13 @@ nlohmann::json params_json(generate::VemParams p) {
   return out;
 }
 
-nlohmann::json finish(const std::filesystem::path& dir, const generate::Vem& vem, const RunSettings& s,
-                      bool quiet) {
+nlohmann::json finish(const std::filesystem::path& dir, const generate::Vem& vem, const RunSettings& s, bool quiet) {
   const auto& p = vem.params();
   const Packing structural = vem.structural_packing();
   io::WriteOptions w;
-  w.comment = fmt::format("packlab {} generate vem N_S={} N_V={} phi_s={:.17g} r_S={:.17g} seed={} q_end={:.6g}",
-                          io::version(), p.structural, p.voids, p.phi_s, p.radius, p.seed,
-                          vem.curve().empty() ? 0.0 : vem.curve().back().q);
+  w.comment =
+      fmt::format("packlab {} generate vem N_S={} N_V={} phi_s={:.17g} r_S={:.17g} seed={} q_end={:.6g}", io::version(),
+                  p.structural, p.voids, p.phi_s, p.radius, p.seed, vem.curve().empty() ? 0.0 : vem.curve().back().q);
   io::write_packing(structural, dir / "packing.xyz", w);
   io::write_packing(structural, dir / "packing.vtu", w);
   io::write_text_atomically(dir / "cn_curve.csv", curve_csv(vem));
@@ -174,8 +174,8 @@ nlohmann::json finish(const std::filesystem::path& dir, const generate::Vem& vem
         {"method",
          "logistic step on a linear baseline, Levenberg-Marquardt, refitted on |q - q_i| <= window_widths * w; "
          "*_err: standard errors from the covariance; *_window: change with a 0.75x/1.25x window"}};
-    const analyze::PowerLaw pl = analyze::fit_power_law(
-        phi, cn, phi_i.value, inf.y, analyze::PowerLawOptions{0.0, s.power_law_max_excess, 4});
+    const analyze::PowerLaw pl =
+        analyze::fit_power_law(phi, cn, phi_i.value, inf.y, analyze::PowerLawOptions{0.0, s.power_law_max_excess, 4});
     if (pl.found) {
       report["beta"] = pl.beta;
       report["beta_err"] = pl.beta_err;
@@ -208,17 +208,19 @@ nlohmann::json finish(const std::filesystem::path& dir, const generate::Vem& vem
   report["steps"] = vem.total_steps();
   report["limited_relaxations"] = vem.limited_relaxations();
   report["stop_reason"] = generate::vem_stop_name(vem.stop_reason());
-  const double m_s = p.structural_material.density * 4.0 / 3.0 * 3.14159265358979323846 * p.radius * p.radius * p.radius;
+  const double m_s =
+      p.structural_material.density * 4.0 / 3.0 * 3.14159265358979323846 * p.radius * p.radius * p.radius;
   report["mass_scaling"] = {
       {"void_mass_scaling", p.void_mass_scaling},
       {"void_mass_floor_kg", vem.void_mass_floor()},
       {"structural_mass_kg", m_s},
-      {"unscaled_above_q", p.void_mass_scaling > 0.0
-                               ? std::cbrt(vem.void_mass_floor() / (p.void_material.density * 4.0 / 3.0 *
-                                                                      3.14159265358979323846 * p.radius * p.radius *
-                                                                      p.radius))
-                               : 0.0},
-      {"note", "void mass = max(true mass, c m_S k_V/k_S); the voids have their true mass for q above unscaled_above_q"}};
+      {"unscaled_above_q",
+       p.void_mass_scaling > 0.0
+           ? std::cbrt(vem.void_mass_floor() /
+                       (p.void_material.density * 4.0 / 3.0 * 3.14159265358979323846 * p.radius * p.radius * p.radius))
+           : 0.0},
+      {"note",
+       "void mass = max(true mass, c m_S k_V/k_S); the voids have their true mass for q above unscaled_above_q"}};
   report["seconds"] = vem.seconds();
   report["particle_steps_per_second"] =
       vem.seconds() > 0.0 ? particles * static_cast<double>(vem.total_steps()) / vem.seconds() : 0.0;
@@ -233,10 +235,11 @@ nlohmann::json finish(const std::filesystem::path& dir, const generate::Vem& vem
                report["q_end"].get<double>(), generate::vem_stop_name(vem.stop_reason()), vem.total_steps(),
                vem.seconds(), report["particle_steps_per_second"].get<double>());
     if (inf.found)
-      fmt::print("inflection: q_i = {:.4f} +- {:.4f}, CN_i = {:.3f}, slope = {:.2f}, Phi_T,i = {:.4f}; "
-                 "q_i n^1/3 = {:.3f}, slope n^1/3 = {:.2f}\n",
-                 inf.x, std::hypot(inf.x_err, inf.x_window), inf.y, inf.slope,
-                 report["inflection"]["phi_total"].get<double>(), inf.x * n13, inf.slope * n13);
+      fmt::print(
+          "inflection: q_i = {:.4f} +- {:.4f}, CN_i = {:.3f}, slope = {:.2f}, Phi_T,i = {:.4f}; "
+          "q_i n^1/3 = {:.3f}, slope n^1/3 = {:.2f}\n",
+          inf.x, std::hypot(inf.x_err, inf.x_window), inf.y, inf.slope, report["inflection"]["phi_total"].get<double>(),
+          inf.x * n13, inf.slope * n13);
     else
       fmt::print("inflection: not found ({})\n", inf.message);
     fmt::print("packing: {}\nCN(q) curve: {}{}\nreport: {}\n", (dir / "packing.xyz").string(),
@@ -279,8 +282,8 @@ void add_generate_vem(CLI::App& generate) {
       // settings may change.
       std::string refused = given("--config") ? "--config" : opt->method->first_given({"threads"});
       if (!refused.empty())
-        fail_input(fmt::format("{} cannot be combined with --resume: the run continues with its saved parameters",
-                               refused));
+        fail_input(
+            fmt::format("{} cannot be combined with --resume: the run continues with its saved parameters", refused));
       if (given("--out") && std::filesystem::path(opt->out) != std::filesystem::path(opt->resume))
         fail_input("--out: a resumed run writes into its own folder (--resume DIR); drop --out");
       dir = opt->resume;
@@ -315,10 +318,11 @@ void add_generate_vem(CLI::App& generate) {
       opt->run->schema().validate();
       if (opt->check) {
         const double l = generate::vem_box_edge(params.structural, params.radius, params.phi_s);
-        fmt::print("generate vem: N_S = {}, N_V = {} (n = {:g}), Phi_S = {:g}, r_S = {:g} m, box edge {:.6g} m "
-                   "({:.3f} r_S), q from {:g} in steps of {:g} to at most {:g}; parameters valid\n",
-                   params.structural, params.voids, params.number_ratio(), params.phi_s, params.radius, l,
-                   l / params.radius, params.void_radius_ratio, params.void_radius_ratio, params.max_q);
+        fmt::print(
+            "generate vem: N_S = {}, N_V = {} (n = {:g}), Phi_S = {:g}, r_S = {:g} m, box edge {:.6g} m "
+            "({:.3f} r_S), q from {:g} in steps of {:g} to at most {:g}; parameters valid\n",
+            params.structural, params.voids, params.number_ratio(), params.phi_s, params.radius, l, l / params.radius,
+            params.void_radius_ratio, params.void_radius_ratio, params.max_q);
         return;
       }
       io::ensure_directory(dir);

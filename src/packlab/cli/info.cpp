@@ -21,8 +21,7 @@ void add_info(CLI::App& app) {
   auto* cmd = app.add_subcommand("info", "Particles, box, volume fraction and mean coordination of a packing");
   cmd->add_option("file", opt->file, "Packing file")->required();
   cmd->add_flag("--json", opt->json, "Print one JSON object");
-  cmd->add_option("--contact-eps", opt->contact_eps,
-                  "Contact tolerance: in contact when distance < (1+eps)(r_i+r_j)")
+  cmd->add_option("--contact-eps", opt->contact_eps, "Contact tolerance: in contact when distance < (1+eps)(r_i+r_j)")
       ->capture_default_str();
   cmd->add_flag("--quiet", opt->quiet, "No progress output");
   cmd->callback([opt] {
@@ -51,8 +50,8 @@ void add_info(CLI::App& app) {
     }
     fmt::print("file               {}\n", opt->file);
     fmt::print("particles          {}\n", packing.size());
-    fmt::print("box                {:.9g} x {:.9g} x {:.9g} m (origin {:.9g} {:.9g} {:.9g})\n", b.length.x,
-               b.length.y, b.length.z, b.lo.x, b.lo.y, b.lo.z);
+    fmt::print("box                {:.9g} x {:.9g} x {:.9g} m (origin {:.9g} {:.9g} {:.9g})\n", b.length.x, b.length.y,
+               b.length.z, b.lo.x, b.lo.y, b.lo.z);
     fmt::print("periodic           {} {} {}\n", b.periodic[0], b.periodic[1], b.periodic[2]);
     fmt::print("radius             {:.6g} .. {:.6g} m\n", r_min, r_max);
     fmt::print("volume fraction    {:.6f}\n", packing.volume_fraction());

@@ -47,18 +47,15 @@ std::string cycles_csv(const mechanics::OscillatoryShearResult& result) {
   return csv;
 }
 
-
 }  // namespace
 
 void add_test_shear(CLI::App& test) {
-  CommandParts parts;
-  parts.input = "Bonded model (a file with bonds, e.g. from packlab bond)";
-  parts.output = "Output folder";
-  parts.plots = true;
   add_option_command(
       test, "shear",
       "Oscillatory shear test of a bonded model: storage modulus G' for six orientations (docs/shear.md)",
-      io::shear_test_options, parts, [](const OptionCommand<io::ShearTestRun>& c) {
+      io::shear_test_options,
+      {.input = "Bonded model (a file with bonds, e.g. from packlab bond)", .output = "Output folder", .plots = true},
+      [](const OptionCommand<io::ShearTestRun>& c) {
         mechanics::OscillatoryShearOptions options = c.settings.test;
         mechanics::validate(options);
         const Packing packing = io::read_packing(c.in);

@@ -23,16 +23,15 @@ namespace packlab::cli {
 
 void add_relax(CLI::App& app) {
   auto log = std::make_shared<std::string>();
-  CommandParts parts;
-  parts.input = "Input packing";
-  parts.output = "Output packing (format by extension)";
-  parts.output_positional = true;
-  parts.plots = true;
   // The material keys are those of every law; the engine checks the ones its law reads.
-  parts.validate = false;
   CLI::App* cmd = add_option_command(
       app, "relax", "Relax a packing with a contact law and local damping until the forces balance", io::relax_options,
-      parts, [log](const OptionCommand<io::RelaxRun>& c) {
+      {.input = "Input packing",
+       .output = "Output packing (format by extension)",
+       .output_positional = true,
+       .plots = true,
+       .validate = false},
+      [log](const OptionCommand<io::RelaxRun>& c) {
         const auto t0 = std::chrono::steady_clock::now();
         const Packing packing = io::read_packing(c.in);
         // Check the output path before running (no surprise after a long run).

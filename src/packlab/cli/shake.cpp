@@ -36,12 +36,9 @@ io::ConfigSchema shake_schema(ShakeRun& r) { return io::shake_options(r.o).appen
 std::string shake_config_reference() { return option_reference(shake_schema); }
 
 void add_shake(CLI::App& app) {
-  CommandParts parts;
-  parts.input = "Input packing (no overlaps)";
-  parts.output = "Output folder";
-  parts.plots = true;
   add_option_command(
-      app, "shake", "Monte-Carlo shaking of a hard-sphere packing (global shakes)", shake_schema, parts,
+      app, "shake", "Monte-Carlo shaking of a hard-sphere packing (global shakes)", shake_schema,
+      {.input = "Input packing (no overlaps)", .output = "Output folder", .plots = true},
       [](const OptionCommand<ShakeRun>& c) {
         const auto t0 = std::chrono::steady_clock::now();
         const ShakeRun& run = c.settings;

@@ -31,13 +31,13 @@ namespace packlab::cli {
 
 void add_test_compress(CLI::App& test) {
   auto no_vtu = std::make_shared<bool>(false);
-  CommandParts parts;
-  parts.input = "Bonded model (.vtu from `packlab build opal` or `packlab bond`)";
-  parts.output = "Output folder";
-  parts.plots = true;
   CLI::App* cmd = add_option_command(
       test, "compress", "Uniaxial compression of a bonded model by a plate moving down at a set strain rate",
-      io::compression_test_options, parts, [no_vtu](const OptionCommand<mechanics::UniaxialCompressionSetup>& c) {
+      io::compression_test_options,
+      {.input = "Bonded model (.vtu from `packlab build opal` or `packlab bond`)",
+       .output = "Output folder",
+       .plots = true},
+      [no_vtu](const OptionCommand<mechanics::UniaxialCompressionSetup>& c) {
         const Packing model = io::read_packing(c.in);
         mechanics::UniaxialCompressionSetup s = c.settings;
         s.finish(model);

@@ -13,20 +13,21 @@
 
 namespace packlab::cli {
 
-
-void write_uniaxial_compression_outputs(const mechanics::UniaxialCompressionResult& r, const mechanics::UniaxialCompressionOptions& /*o*/, const std::filesystem::path& dir,
-                               bool plots, bool write_model) {
+void write_uniaxial_compression_outputs(const mechanics::UniaxialCompressionResult& r,
+                                        const mechanics::UniaxialCompressionOptions& /*o*/,
+                                        const std::filesystem::path& dir, bool plots, bool write_model) {
   std::filesystem::create_directories(dir);
   io::PlotOptions plot;
   plot.enabled = plots;
   {
     io::write_text_atomically(dir / "curve.csv", io::to_csv(mechanics::curve_columns(r.curve)));
     const std::string curve = (dir / "curve.csv").string();
-    io::make_plot("stress_strain",
-                  {curve, "--modulus", fmt::format("{:.17g}", r.modulus.youngs_modulus), "--intercept",
-                   fmt::format("{:.17g}", r.modulus.intercept), "--fit-begin", fmt::format("{:.17g}", r.modulus.strain_begin),
-                   "--fit-end", fmt::format("{:.17g}", r.modulus.strain_end)},
-                  dir / "stress_strain.png", plot);
+    io::make_plot(
+        "stress_strain",
+        {curve, "--modulus", fmt::format("{:.17g}", r.modulus.youngs_modulus), "--intercept",
+         fmt::format("{:.17g}", r.modulus.intercept), "--fit-begin", fmt::format("{:.17g}", r.modulus.strain_begin),
+         "--fit-end", fmt::format("{:.17g}", r.modulus.strain_end)},
+        dir / "stress_strain.png", plot);
     io::make_plot("stress_strain", {curve, "--force-displacement"}, dir / "force_displacement.png", plot);
     io::make_plot("broken_bonds", {curve}, dir / "broken_bonds.png", plot);
   }
