@@ -68,5 +68,5 @@ def test_random_pores_and_bad_input():
     assert o.pores == 8
     with pytest.raises(packlab.InputError, match="bond_cutoff = 2.5"):
         packlab.build_opal(fba.packing, pore_ratio=4.0, bond_cutoff=2.5)
-    with pytest.raises(packlab.InputError, match="target_porosity = 0.1"):
+    with pytest.raises(packlab.InputError, match="porosity = 0.1"):
         packlab.generate_fba(particles=100, porosity=0.1)

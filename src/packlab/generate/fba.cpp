@@ -11,24 +11,24 @@
 
 #include "packlab/core/error.hpp"
 #include "packlab/core/neighbor_list.hpp"
+#include "packlab/io/options.hpp"
 
 namespace packlab::generate {
 
 void FbaParams::validate() const {
-  require(target_porosity >= 0.30 && target_porosity < 1.0, "target_porosity", target_porosity,
-          "in [0.30, 1) (random close packing of equal spheres is near porosity 0.36)");
-  require(tolerance > 0.0 && tolerance <= 0.1, "tolerance", tolerance, "in (0, 0.1] (relative overlap)");
-  require(shrink_rate > 0.0 && shrink_rate <= 1.0, "shrink_rate", shrink_rate, "in (0, 1]");
-  require(step > 0.0 && step <= 1.0, "step", step, "in (0, 1]");
+  FbaParams copy = *this;
+  io::ConfigSchema declared("generate fba");
+  io::add_fba_params(declared, copy);
+  declared.validate();
   require(max_move > 0.0 && max_move <= 2.0, "max_move", max_move, "in (0, 2] target radii");
-  require(max_iterations >= 1, "max_iterations", static_cast<double>(max_iterations), ">= 1");
-  require(threads >= 1, "threads", threads, ">= 1");
 }
 
 std::string fba_stop_name(FbaStop stop) {
   switch (stop) {
-    case FbaStop::target_reached: return "target_reached";
-    case FbaStop::max_iterations: return "max_iterations";
+    case FbaStop::target_reached:
+      return "target_reached";
+    case FbaStop::max_iterations:
+      return "max_iterations";
   }
   return "unknown";
 }
@@ -111,8 +111,8 @@ FbaResult fba_pack(const Box& box, const std::vector<double>& relative_radius, c
   const std::size_t n = relative_radius.size();
   require(n >= 1 && n <= 100'000'000, "particles", static_cast<double>(n), "in [1, 1e8]");
   for (int a = 0; a < 3; ++a)
-    require(box.length[a] > 0.0 && std::isfinite(box.length[a]), std::string("box length ") + "xyz"[a],
-            box.length[a], "> 0 m");
+    require(box.length[a] > 0.0 && std::isfinite(box.length[a]), std::string("box length ") + "xyz"[a], box.length[a],
+            "> 0 m");
   double vol_rel = 0.0, rho_max = 0.0;
   for (double r : relative_radius) {
     require(r > 0.0 && std::isfinite(r), "relative radius", r, "> 0");
@@ -122,13 +122,14 @@ FbaResult fba_pack(const Box& box, const std::vector<double>& relative_radius, c
   // Target scale: sum 4/3 pi (s rho)^3 = (1 - porosity) V.
   const double s_t = std::cbrt((1.0 - params.target_porosity) * box.volume() / vol_rel);
   const double s_fill = std::min(std::cbrt(box.volume() / vol_rel), 1.5 * s_t);  // volume fraction 1, capped
-  const double skin = 0.4 * s_t * rho_max;  // neighbour-list skin
+  const double skin = 0.4 * s_t * rho_max;                                       // neighbour-list skin
   for (int a = 0; a < 3; ++a) {
     const double need = box.periodic[a] ? 2.0 * s_fill * rho_max + skin : 2.0 * s_t * rho_max;
     if (box.length[a] < need)
-      fail_input(fmt::format("box length {} = {:g} m: must be >= {:g} m (the largest sphere{}); use a larger box "
-                             "or more particles",
-                             "xyz"[a], box.length[a], need, box.periodic[a] ? " and its images" : ""));
+      fail_input(
+          fmt::format("box length {} = {:g} m: must be >= {:g} m (the largest sphere{}); use a larger box "
+                      "or more particles",
+                      "xyz"[a], box.length[a], need, box.periodic[a] ? " and its images" : ""));
   }
 
   std::vector<double> target(n), outer(n), w3(n);

@@ -4,13 +4,14 @@
 
 #include <algorithm>
 #include <chrono>
-#include <ctime>
 #include <cmath>
+#include <ctime>
 #include <limits>
 
 #include "packlab/core/error.hpp"
 #include "packlab/core/neighbor_list.hpp"
 #include "packlab/core/spatial_sort.hpp"
+#include "packlab/io/options.hpp"
 
 namespace packlab::generate {
 
@@ -24,8 +25,8 @@ int floor_div(int a, int n) { return a >= 0 ? a / n : -((-a + n - 1) / n); }
 // |dx + dv t|^2 - (sigma + sdot t)^2. Lower bounds reject most pairs without sqrt or division:
 // for B < 0 and A >= 0 the root C / (-B + sqrt(B^2 - AC)) is >= C / (-2B); for B >= 0 and A < 0
 // the root (B + sqrt(B^2 - AC)) / (-A) is >= 2B / (-A) when C >= 0.
-[[gnu::always_inline]] inline double collision_time_below(const Vec3& dx, const Vec3& dv, double sigma,
-                                                          double sdot, double horizon) {
+[[gnu::always_inline]] inline double collision_time_below(const Vec3& dx, const Vec3& dv, double sigma, double sdot,
+                                                          double horizon) {
   const double a = norm2(dv) - sdot * sdot;
   const double b = dot(dx, dv) - sigma * sdot;
   const double c = norm2(dx) - sigma * sigma;
@@ -48,16 +49,15 @@ int floor_div(int a, int n) { return a >= 0 ? a / n : -((-a + n - 1) / n); }
 // Parameters
 
 void LsParams::validate() const {
-  require(growth_rate >= 0.0 && std::isfinite(growth_rate), "growth_rate", growth_rate, ">= 0");
+  LsParams copy = *this;
+  io::ConfigSchema declared("generate ls");
+  io::add_ls_params(declared, copy);
+  declared.validate();
   require(target_volume_fraction >= 0.0 && target_volume_fraction < 1.0, "target_volume_fraction",
           target_volume_fraction, "in [0, 1) (0 = grow until jammed)");
-  require(max_reduced_pressure > 1.0, "max_reduced_pressure", max_reduced_pressure, "> 1");
-  require(events_per_block >= 0.01 && events_per_block <= 1e6, "events_per_block", events_per_block,
-          "in [0.01, 1e6] events per particle");
   require(max_blocks >= 0, "max_blocks", static_cast<double>(max_blocks), ">= 0");
   require(max_events_per_particle > 0.0, "max_events_per_particle", max_events_per_particle, "> 0");
-  require(separation_boost >= 1.0 && separation_boost <= 100.0, "separation_boost", separation_boost,
-          "in [1, 100]");
+  require(separation_boost >= 1.0 && separation_boost <= 100.0, "separation_boost", separation_boost, "in [1, 100]");
   require(neighbor_skin > 0.0 && neighbor_skin <= 1.0, "neighbor_skin", neighbor_skin, "in (0, 1] diameters");
   if (growth_rate == 0.0)
     require(max_blocks > 0, "max_blocks", static_cast<double>(max_blocks),
@@ -66,10 +66,14 @@ void LsParams::validate() const {
 
 std::string ls_stop_name(LsStop stop) {
   switch (stop) {
-    case LsStop::target_reached: return "target_reached";
-    case LsStop::jammed: return "jammed";
-    case LsStop::max_blocks: return "max_blocks";
-    case LsStop::max_events: return "max_events";
+    case LsStop::target_reached:
+      return "target_reached";
+    case LsStop::jammed:
+      return "jammed";
+    case LsStop::max_blocks:
+      return "max_blocks";
+    case LsStop::max_events:
+      return "max_events";
   }
   return "?";
 }
@@ -408,7 +412,8 @@ void LsSimulation::start_block() {
 
 bool LsSimulation::run_block() {
   const long long n = static_cast<long long>(body_.size());
-  const long long budget = std::max<long long>(1, static_cast<long long>(params_.events_per_block * static_cast<double>(n)));
+  const long long budget =
+      std::max<long long>(1, static_cast<long long>(params_.events_per_block * static_cast<double>(n)));
   const double boost = params_.separation_boost;
   const double g = params_.growth_rate;
   const long long collisions0 = status_.collisions, transfers0 = status_.transfers;
@@ -443,8 +448,10 @@ bool LsSimulation::run_block() {
       Vec3 d = bj.x - bi.x;
       for (int a = 0; a < 3; ++a) {
         const double l = box_.length[a];
-        if (d[a] > 0.5 * l) d[a] -= l;
-        else if (d[a] < -0.5 * l) d[a] += l;
+        if (d[a] > 0.5 * l)
+          d[a] -= l;
+        else if (d[a] < -0.5 * l)
+          d[a] += l;
       }
       const double r = norm(d);
       const Vec3 nrm = d * (1.0 / r);
@@ -476,8 +483,10 @@ bool LsSimulation::run_block() {
     double fill = 0.0;
     for (int x : list_fill_) fill += x;
     fill /= static_cast<double>(n);
-    if (t > 0.5 * c && fill < 12.0) skin_rel_ = std::min(2.0, skin_rel_ * 1.5);
-    else if (t < 0.1 * c || fill > 20.0) skin_rel_ = std::max(0.005, skin_rel_ * 0.8);
+    if (t > 0.5 * c && fill < 12.0)
+      skin_rel_ = std::min(2.0, skin_rel_ * 1.5);
+    else if (t < 0.1 * c || fill > 20.0)
+      skin_rel_ = std::max(0.005, skin_rel_ * 0.8);
   }
   status_.time += now;
   ++status_.blocks;

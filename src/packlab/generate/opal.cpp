@@ -11,6 +11,7 @@
 #include "packlab/core/error.hpp"
 #include "packlab/generate/bonding.hpp"
 #include "packlab/generate/fba.hpp"
+#include "packlab/io/options.hpp"
 
 namespace packlab::generate {
 
@@ -55,8 +56,10 @@ class CellGrid {
       } else {
         for (int k = c[a] - span; k <= c[a] + span; ++k) {
           int kk = k;
-          if (box_.periodic[a]) kk = (k % n_[a] + n_[a]) % n_[a];
-          else if (k < 0 || k >= n_[a]) continue;
+          if (box_.periodic[a])
+            kk = (k % n_[a] + n_[a]) % n_[a];
+          else if (k < 0 || k >= n_[a])
+            continue;
           range[a].push_back(kk);
         }
       }
@@ -128,15 +131,16 @@ std::vector<Vec3> fcc_basis(FccOrientation o) {
   }
   const double s3 = std::sqrt(3.0), h = std::sqrt(2.0 / 3.0);
   // Close-packed layers A, B, C stacked along z (ABC = [111]).
-  return {{0, 0, 0},           {0.5, s3 / 2, 0},          {0.5, s3 / 6, h},
-          {0, 2 * s3 / 3, h},  {0, s3 / 3, 2 * h},        {0.5, 5 * s3 / 6, 2 * h}};
+  return {{0, 0, 0},          {0.5, s3 / 2, 0},   {0.5, s3 / 6, h},
+          {0, 2 * s3 / 3, h}, {0, s3 / 3, 2 * h}, {0.5, 5 * s3 / 6, 2 * h}};
 }
 
 bool commensurate(const Box& box, const Vec3& period) {
   for (int a = 0; a < 3; ++a) {
     if (!box.periodic[a]) continue;
     const double k = box.length[a] / period[a];
-    if (std::abs(k - std::round(k)) > 1e-4 * std::max(1.0, k) || std::round(k) < 1.0) return false;  // seam < 1e-4 period
+    if (std::abs(k - std::round(k)) > 1e-4 * std::max(1.0, k) || std::round(k) < 1.0)
+      return false;  // seam < 1e-4 period
   }
   return true;
 }
@@ -215,9 +219,10 @@ PoreSet random_pores(const Box& region, const RandomPores& o, Random& rng) {
   fp.max_iterations = o.fba_max_iterations;
   FbaResult r = fba_pack(region, std::vector<double>(static_cast<std::size_t>(o.count), 1.0), fp, rng);
   if (r.status.stop != FbaStop::target_reached)
-    fail_input(fmt::format("pores = {}: the force-biased algorithm did not separate the pores in {} iterations "
-                           "(max overlap {:g}); use fewer pores",
-                           o.count, o.fba_max_iterations, r.status.max_overlap));
+    fail_input(
+        fmt::format("pores = {}: the force-biased algorithm did not separate the pores in {} iterations "
+                    "(max overlap {:g}); use fewer pores",
+                    o.count, o.fba_max_iterations, r.status.max_overlap));
   PoreSet pores;
   pores.centre = std::move(r.packing.position);
   pores.radius.assign(pores.centre.size(), 0.5 * o.diameter);
@@ -252,17 +257,10 @@ void OpalOptions::validate() const {
   }
   if (pores.radius.size() != pores.centre.size()) fail_input("pores: one radius per centre");
   for (double r : pores.radius) require(r > 0.0 && std::isfinite(r), "pore radius", r, "> 0 m");
-  require(coating_thickness >= 0.0 && std::isfinite(coating_thickness), "coating", coating_thickness, ">= 0 m");
-  require(opening_distance_ratio > 0.0 && opening_distance_ratio <= 10.0, "opening_distance_ratio",
-          opening_distance_ratio, "in (0, 10]");
-  require(substrate_layers >= 0.0 && substrate_layers <= 1000.0, "substrate_layers", substrate_layers,
-          "in [0, 1000] particle diameters");
-  require(bond_cutoff_ratio >= 1.0 && bond_cutoff_ratio < 2.0, "bond_cutoff", bond_cutoff_ratio,
-          "in [1, 2) (centre distance / (r_i + r_j))");
-  require(bond_radius_ratio > 0.0 && bond_radius_ratio <= 10.0, "bond_radius_ratio", bond_radius_ratio, "in (0, 10]");
-  require(silica_density > 0.0, "silica_density", silica_density, "> 0 kg/m^3");
-  require(titania_density > 0.0, "titania_density", titania_density, "> 0 kg/m^3");
-  require(threads >= 1, "threads", threads, ">= 1");
+  OpalOptions copy = *this;
+  io::ConfigSchema declared("build opal");
+  io::add_opal_params(declared, copy);
+  declared.validate();
 }
 
 PoreSet opal_pores(const Packing& particles, const OpalOptions& options) {
@@ -294,9 +292,10 @@ Packing build_opal(const Packing& in, const OpalOptions& options, OpalSummary* s
   const double L_coat = options.coating_thickness;
   for (int a = 0; a < 3; ++a)
     if (box.periodic[a] && box.length[a] < 2.0 * (r_pore_max + r_max))
-      fail_input(fmt::format("box length {} = {:g} m: must be >= {:g} m (a pore diameter plus a particle "
-                             "diameter) along a periodic axis",
-                             "xyz"[a], box.length[a], 2.0 * (r_pore_max + r_max)));
+      fail_input(
+          fmt::format("box length {} = {:g} m: must be >= {:g} m (a pore diameter plus a particle "
+                      "diameter) along a periodic axis",
+                      "xyz"[a], box.length[a], 2.0 * (r_pore_max + r_max)));
 
   // Steps 2-3: pore test (eq. 1) and coating candidates (eq. 2), every pore the particle is in.
   enum : std::uint8_t { keep = 0, in_pore = 1, candidate = 2 };
@@ -361,9 +360,12 @@ Packing build_opal(const Packing& in, const OpalOptions& options, OpalSummary* s
     out.add(in.position[i], in.radius[i], t);
     out.fixed.push_back(sub ? 1 : 0);
     v_all += v;
-    if (t == particle_type::substrate) ++n_sub;
-    else if (t == particle_type::coating) ++n_coat, v_titania += v;
-    else ++n_struct, v_silica += v;
+    if (t == particle_type::substrate)
+      ++n_sub;
+    else if (t == particle_type::coating)
+      ++n_coat, v_titania += v;
+    else
+      ++n_struct, v_silica += v;
   }
   if (progress) progress("bonds", 0.6);
 
@@ -396,8 +398,8 @@ Packing build_opal(const Packing& in, const OpalOptions& options, OpalSummary* s
     s.mean_coordination = out.size() ? 2.0 * static_cast<double>(s.bonds) / static_cast<double>(out.size()) : 0.0;
     s.porosity = v_before > 0 ? 1.0 - (v_silica + v_titania) / v_before : 0.0;
     s.particle_porosity = 1.0 - v_all / box.volume();
-    s.density = v_before > 0 ? (options.silica_density * v_silica + options.titania_density * v_titania) / v_before
-                             : 0.0;
+    s.density =
+        v_before > 0 ? (options.silica_density * v_silica + options.titania_density * v_titania) / v_before : 0.0;
     s.pore_diameter = pores.size() ? 2.0 * r_pore_sum / static_cast<double>(pores.size()) : 0.0;
     s.mean_particle_diameter = slab.mean_diameter;
     s.substrate_top = slab.top;

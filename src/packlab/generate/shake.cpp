@@ -10,12 +10,15 @@
 
 #include "packlab/core/error.hpp"
 #include "packlab/generate/overlap_check.hpp"
+#include "packlab/io/options.hpp"
 
 namespace packlab::generate {
 
 void ShakeParams::validate() const {
-  require(window > 0.0 && window <= 1.0, "window", window, "in (0, 1] particle radii");
-  require(max_trials >= 1 && max_trials <= 1000000, "max_trials", max_trials, "in [1, 1e6]");
+  ShakeParams copy = *this;
+  io::ConfigSchema declared("shake");
+  io::add_shake_params(declared, copy);
+  declared.validate();
   require(adapt_factor > 1.0 && adapt_factor <= 2.0, "adapt_factor", adapt_factor, "in (1, 2]");
   require(min_window > 0.0 && min_window <= window, "min_window", min_window, "in (0, window]");
   require(max_window >= window && max_window <= 1.0, "max_window", max_window, "in [window, 1]");

@@ -11,6 +11,7 @@
 #include "packlab/analyze/coordination.hpp"
 #include "packlab/core/binary_io.hpp"
 #include "packlab/core/error.hpp"
+#include "packlab/io/options.hpp"
 
 namespace packlab::generate {
 
@@ -138,49 +139,33 @@ double vem_box_edge(long structural, double radius, double phi_s) {
 }
 
 void VemParams::validate() const {
-  require(structural >= 2, "structural", static_cast<double>(structural), "an integer >= 2");
-  require(voids >= 1, "voids", static_cast<double>(voids), "an integer >= 1");
-  require(phi_s > 0.0 && phi_s < 0.64, "phi_s", phi_s,
-          "in (0, 0.64): the structural particles alone must stay below random close packing");
-  require(radius > 0.0 && std::isfinite(radius), "radius", radius, "> 0 m");
-  require(blowup_steps >= 1 && blowup_steps <= 10000, "blowup_steps", blowup_steps, "an integer in [1, 10000]");
-  require(void_radius_ratio > 0.0 && void_radius_ratio <= 1.0, "void_radius_ratio", void_radius_ratio,
-          "in (0, 1] (initial void radius / r_S)");
+  VemParams copy = *this;
+  io::vem_options(copy).validate();  // every declared range, materials included
   dem::validate({structural_material, void_material}, dem::LinearContact::properties);
-  require(contact_eps >= 0.0 && contact_eps < 1.0, "contact_eps", contact_eps, "in [0, 1)");
-  require(relax_tolerance >= 0.0 && std::isfinite(relax_tolerance), "relax.tolerance", relax_tolerance,
-          ">= 0 (0 = off; with relax.overlap = 0 every relaxation runs relax.max_steps)");
-  require(relax_overlap >= 0.0 && relax_overlap < 1.0, "relax.overlap", relax_overlap,
-          "in [0, 1) (largest overlap / (r_i + r_j) ending a relaxation; 0 = off)");
-  require(relax_max_steps >= 1, "relax.max_steps", static_cast<double>(relax_max_steps), "an integer >= 1");
-  require(relax_check_interval >= 1, "relax.check_interval", static_cast<double>(relax_check_interval),
-          "an integer >= 1");
-  require(void_mass_scaling >= 0.0 && std::isfinite(void_mass_scaling), "void_mass_scaling", void_mass_scaling,
-          ">= 0 (0 = no mass scaling)");
-  require(stop_strain_energy > 0.0 && std::isfinite(stop_strain_energy), "stop.strain_energy", stop_strain_energy,
-          "> 0 (strain energy / (N_S k_n,S r_S^2))");
   require(max_q >= void_radius_ratio && std::isfinite(max_q), "stop.max_q", max_q,
           ">= void_radius_ratio (largest r_V / r_S recorded)");
   if (time_step_rule != "contacts" && time_step_rule != "stiffness_sum")
-    fail_input(fmt::format("time_step_rule = {}: must be 'stiffness_sum' (PFC's rule, default) or 'contacts' "
-                           "(a global step would be set by the tiny voids)",
-                           time_step_rule));
-  require(time_step_safety > 0.0 && time_step_safety <= 1.0, "time_step_safety", time_step_safety, "in (0, 1]");
-  require(skin > 0.0 && skin <= 2.0, "skin", skin, "in (0, 2] (Verlet skin / r_S)");
-  require(threads >= 0, "threads", threads, ">= 0 (0 = all cores)");
+    fail_input(
+        fmt::format("time_step_rule = {}: must be 'stiffness_sum' (PFC's rule, default) or 'contacts' "
+                    "(a global step would be set by the tiny voids)",
+                    time_step_rule));
   const double edge = vem_box_edge(structural, radius, phi_s);
   const double range = (2.0 * std::max(1.0, max_q) + skin) * radius;
   if (edge < range)
-    fail_input(fmt::format("stop.max_q = {:g}: the box edge {:.4g} r_S (from structural = {}, phi_s = {:g}, eq. 3) "
-                           "must hold 2 max(1, max_q) + skin = {:.4g} r_S; lower max_q or use more particles",
-                           max_q, edge / radius, structural, phi_s, range / radius));
+    fail_input(
+        fmt::format("stop.max_q = {:g}: the box edge {:.4g} r_S (from structural = {}, phi_s = {:g}, eq. 3) "
+                    "must hold 2 max(1, max_q) + skin = {:.4g} r_S; lower max_q or use more particles",
+                    max_q, edge / radius, structural, phi_s, range / radius));
 }
 
 std::string vem_stop_name(VemStop stop) {
   switch (stop) {
-    case VemStop::stage_three: return "stage_three";
-    case VemStop::max_q: return "max_q";
-    case VemStop::none: break;
+    case VemStop::stage_three:
+      return "stage_three";
+    case VemStop::max_q:
+      return "max_q";
+    case VemStop::none:
+      break;
   }
   return "none";
 }
@@ -207,9 +192,7 @@ double structural_coordination(const Packing& packing, double eps) {
 
 Vem::Vem(const VemParams& params, ResumeTag) : params_(params), rng_(params.seed) { params_.validate(); }
 
-Vem::Vem(const VemParams& params) : Vem(params, ResumeTag{}) {
-  build_engine();
-}
+Vem::Vem(const VemParams& params) : Vem(params, ResumeTag{}) { build_engine(); }
 
 Vem::~Vem() = default;
 
@@ -240,9 +223,7 @@ double Vem::structural_radius() const {
                            : static_cast<double>(blowup_done_ + 1) * params_.radius / static_cast<double>(m + 1);
 }
 
-double Vem::void_radius() const {
-  return static_cast<double>(cycle_ + 1) * params_.void_radius_ratio * params_.radius;
-}
+double Vem::void_radius() const { return static_cast<double>(cycle_ + 1) * params_.void_radius_ratio * params_.radius; }
 
 double Vem::void_mass_floor() const {
   if (params_.void_mass_scaling <= 0.0) return 0.0;

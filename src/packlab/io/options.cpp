@@ -150,7 +150,7 @@ ConfigSchema vem_options(generate::VemParams& p) {
       .range(ranges::positive)
       .integer("seed", p.seed, "Seed of the random generator")
       .integer("threads", p.threads, "OpenMP threads (0 = all cores)")
-      .range(ranges::non_negative)
+      .range({0.0, 1024.0, false, false})
       .integer("blowup_steps", p.blowup_steps, "Blow-up steps m of the structural particles")
       .range({1.0, 10000.0, false, false})
       .number("void_radius_ratio", p.void_radius_ratio, "Initial void radius and its growth per cycle, r_V0 / r_S")
@@ -189,8 +189,6 @@ ConfigSchema vem_options(generate::VemParams& p) {
   return schema;
 }
 
-namespace {
-
 void add_shake_params(ConfigSchema& schema, generate::ShakeParams& p) {
   schema.number("window", p.window, "Shake window R_sh in units of the particle radius")
       .range({0.0, 1.0, true, false})
@@ -199,10 +197,21 @@ void add_shake_params(ConfigSchema& schema, generate::ShakeParams& p) {
       .boolean("adaptive", p.adaptive, "Adapt the shake window to the free distance");
 }
 
-}  // namespace
-
 generate::SizeClasses LsOptions::classes() const {
   return generate::SizeClasses::from_options(sizes, number_fractions, volume_fractions);
+}
+
+void add_ls_params(ConfigSchema& schema, generate::LsParams& p) {
+  schema
+      .number("growth_rate", p.growth_rate,
+              "G = ds/dt: growth of the largest diameter per unit time, in units of its box-filling size and of the "
+              "thermal speed")
+      .range(ranges::non_negative)
+      .number("max_pressure", p.max_reduced_pressure, "Jamming criterion: reduced pressure PV/NkT")
+      .range({1.0, ranges::inf, true, true})
+      .number("events_per_block", p.events_per_block,
+              "Events per particle between velocity rescalings and pressure measurements")
+      .range({0.01, 1e6, false, false});
 }
 
 ConfigSchema ls_options(LsOptions& o) {
@@ -219,16 +228,9 @@ ConfigSchema ls_options(LsOptions& o) {
               "Radius of the largest class at the target volume fraction (0.64 when growing to jamming)")
       .unit("m")
       .range(ranges::positive)
-      .number("growth_rate", o.ls.growth_rate,
-              "G = ds/dt: growth of the largest diameter per unit time, in units of its box-filling size and of the "
-              "thermal speed")
-      .range(ranges::non_negative)
-      .number("max_pressure", o.ls.max_reduced_pressure, "Jamming criterion: reduced pressure PV/NkT")
-      .range({1.0, ranges::inf, true, true})
-      .number("events_per_block", o.ls.events_per_block,
-              "Events per particle between velocity rescalings and pressure measurements")
-      .range({0.01, 1e6, false, false})
-      .integer("seed", o.seed, "Seed of the random generator");
+      .range(ranges::positive);
+  add_ls_params(schema, o.ls);
+  schema.integer("seed", o.seed, "Seed of the random generator");
   return schema;
 }
 
@@ -289,6 +291,22 @@ FbaOptions::Setup FbaOptions::setup() const {
   return s;
 }
 
+void add_fba_params(ConfigSchema& schema, generate::FbaParams& p) {
+  schema.number("porosity", p.target_porosity, "Target porosity 1 - sum V_i / V_box")
+      .range({0.30, 1.0, false, true})
+      .number("tolerance", p.tolerance, "Stop when the largest overlap (r_i + r_j - d)/(r_i + r_j) is at most this")
+      .range({0.0, 0.1, true, false})
+      .number("shrink_rate", p.shrink_rate,
+              "Fraction of the gap between nominal and true diameter removed per iteration")
+      .range({0.0, 1.0, true, false})
+      .number("step", p.step, "Fraction of each pair's overlap removed per iteration")
+      .range({0.0, 1.0, true, false})
+      .integer("max_iterations", p.max_iterations, "Iteration limit")
+      .range({1.0, ranges::inf, false, true})
+      .integer("threads", p.threads, "Threads of the neighbour search")
+      .range({1.0, 1024.0, false, false});
+}
+
 ConfigSchema fba_options(FbaOptions& o) {
   ConfigSchema schema("generate fba", "The force-biased algorithm (docs/opal-build.md).", "generate_fba");
   schema.integer("particles", o.particles, "Number of spheres (the box follows from diameter and aspect); or box")
@@ -298,24 +316,14 @@ ConfigSchema fba_options(FbaOptions& o) {
       .number("diameter", o.diameter, "Diameter of the largest size class")
       .unit("m")
       .range(ranges::positive)
-      .number("porosity", o.fba.target_porosity, "Target porosity 1 - sum V_i / V_box")
-      .range({0.30, 1.0, false, true})
       .numbers("sizes", o.sizes, "Relative diameters of the size classes, e.g. 1,0.5")
       .numbers("number_fractions", o.number_fractions, "Number fractions of the classes (normalized)")
       .numbers("volume_fractions", o.volume_fractions, "Volume fractions of the classes (normalized), instead")
-      .text("periodic", o.periodic, "Periodic axes (subset of xyz, or none); walls on the others")
-      .number("tolerance", o.fba.tolerance, "Stop when the largest overlap (r_i + r_j - d)/(r_i + r_j) is at most this")
-      .range({0.0, 0.1, true, false})
-      .number("shrink_rate", o.fba.shrink_rate,
-              "Fraction of the gap between nominal and true diameter removed per iteration")
-      .range({0.0, 1.0, true, false})
-      .number("step", o.fba.step, "Fraction of each pair's overlap removed per iteration")
-      .range({0.0, 1.0, true, false})
-      .integer("max_iterations", o.fba.max_iterations, "Iteration limit")
-      .integer("history_every", o.history_every, "Iterations between two rows of the convergence history")
+      .text("periodic", o.periodic, "Periodic axes (subset of xyz, or none); walls on the others");
+  add_fba_params(schema, o.fba);
+  schema.integer("history_every", o.history_every, "Iterations between two rows of the convergence history")
       .range({1.0, ranges::inf, false, true})
-      .integer("seed", o.seed, "Seed of the random generator")
-      .integer("threads", o.fba.threads, "Threads of the neighbour search");
+      .integer("seed", o.seed, "Seed of the random generator");
   return schema;
 }
 
@@ -376,6 +384,32 @@ generate::OpalOptions OpalBuildOptions::resolve(const Packing& in, nlohmann::jso
   return o;
 }
 
+void add_opal_params(ConfigSchema& schema, generate::OpalOptions& o) {
+  schema.number("coating", o.coating_thickness, "Titania coating thickness L_coat (0 = none)")
+      .unit("m")
+      .range(ranges::non_negative)
+      .number("opening_distance_ratio", o.opening_distance_ratio,
+              "Coating candidates farther than this x (L_coat + r) from the silica surface stay open")
+      .range({0.0, 10.0, true, false})
+      .number("substrate_layers", o.substrate_layers,
+              "Fixed substrate: particles with z below the bottom + this x mean diameter")
+      .range({0.0, 1000.0, false, false})
+      .number("bond_cutoff", o.bond_cutoff_ratio,
+              "Bond pairs closer than this x (r_i + r_j) (1.75 d for equal particles)")
+      .range({1.0, 2.0, false, true})
+      .number("bond_radius_ratio", o.bond_radius_ratio,
+              "Bond radius / smaller particle radius (recorded for the bond law)")
+      .range({0.0, 10.0, true, false})
+      .number("silica_density", o.silica_density, "Silica continuum density for the report")
+      .unit("kg/m^3")
+      .range(ranges::positive)
+      .number("titania_density", o.titania_density, "Titania continuum density for the report")
+      .unit("kg/m^3")
+      .range(ranges::positive)
+      .integer("threads", o.threads, "Threads of the bond search")
+      .range({1.0, 1024.0, false, false});
+}
+
 ConfigSchema opal_build_options(OpalBuildOptions& o) {
   ConfigSchema schema("build opal",
                       "An inverse-opal bonded-particle model from a particle packing (docs/opal-build.md).",
@@ -397,29 +431,8 @@ ConfigSchema opal_build_options(OpalBuildOptions& o) {
       .range(ranges::non_negative)
       .number("pore_fraction", o.pore_fraction, "Random pores: pore volume fraction of the region above the substrate")
       .range({0.0, 0.6, false, true})
-      .number("coating", o.opal.coating_thickness, "Titania coating thickness L_coat (0 = none)")
-      .unit("m")
-      .range(ranges::non_negative)
-      .number("opening_distance_ratio", o.opal.opening_distance_ratio,
-              "Coating candidates farther than this x (L_coat + r) from the silica surface stay open")
-      .range({0.0, 10.0, true, false})
-      .number("substrate_layers", o.opal.substrate_layers,
-              "Fixed substrate: particles with z below the bottom + this x mean diameter")
-      .range({0.0, 1000.0, false, false})
-      .number("bond_cutoff", o.opal.bond_cutoff_ratio,
-              "Bond pairs closer than this x (r_i + r_j) (1.75 d for equal particles)")
-      .range({1.0, 2.0, false, true})
-      .number("bond_radius_ratio", o.opal.bond_radius_ratio,
-              "Bond radius / smaller particle radius (recorded for the bond law)")
-      .range({0.0, 10.0, true, false})
-      .number("silica_density", o.opal.silica_density, "Silica continuum density for the report")
-      .unit("kg/m^3")
-      .range(ranges::positive)
-      .number("titania_density", o.opal.titania_density, "Titania continuum density for the report")
-      .unit("kg/m^3")
-      .range(ranges::positive)
-      .integer("seed", o.seed, "Seed of the random generator (random pores)")
-      .integer("threads", o.opal.threads, "Threads of the bond search");
+      .integer("seed", o.seed, "Seed of the random generator (random pores)");
+  add_opal_params(schema, o.opal);
   return schema;
 }
 
@@ -481,14 +494,16 @@ void add_oscillatory_shear_options(ConfigSchema& schema, mechanics::OscillatoryS
       .range({1.0, 10.0, false, false})
       .integer("regions", t.regions, "Measurement slabs at heights H (k+1)/(regions+1)")
       .range({1.0, 50.0, false, false})
-      .text("orientations", t.orientations, "all, plate normals (x,y,z: both shear directions each) or "
-                                            "normal:direction pairs (z:x,...)")
+      .text("orientations", t.orientations,
+            "all, plate normals (x,y,z: both shear directions each) or "
+            "normal:direction pairs (z:x,...)")
       .number("time_step_safety", t.time_step_safety, "Time step as a fraction of sqrt(m/k)")
       .range({0.0, 1.0, true, false})
       .integer("threads", t.threads, "OpenMP threads (0 = all cores)")
       .range({0.0, 1024.0, false, false})
-      .boolean("relax.enabled", t.relax, "Relax the periodic bonded structure first (§2.2: velocities zeroed after "
-                                         "each step)")
+      .boolean("relax.enabled", t.relax,
+               "Relax the periodic bonded structure first (§2.2: velocities zeroed after "
+               "each step)")
       .alias("relax")
       .boolean("relax.settle", t.settle, "Settle the test set-up (plates fixed) with the same procedure before loading")
       .alias("settle")
@@ -576,8 +591,9 @@ void add_opal_materials(ConfigSchema& schema, mechanics::OpalMaterials& m) {
       .unit("kg/m^3")
       .range(ranges::positive)
       .alias("density")
-      .number("titania.youngs_modulus", m.titania_youngs_modulus, "Titania (coating) bond Young's modulus (bond "
-                                                                   "material 1)")
+      .number("titania.youngs_modulus", m.titania_youngs_modulus,
+              "Titania (coating) bond Young's modulus (bond "
+              "material 1)")
       .unit("Pa")
       .range(ranges::positive)
       .number("titania.poisson_ratio", m.titania_poisson_ratio, "Titania bond Poisson ratio")
@@ -602,8 +618,9 @@ void add_opal_materials(ConfigSchema& schema, mechanics::OpalMaterials& m) {
               "Time a failed bond stays while its stiffness decays linearly to zero")
       .unit("s")
       .range(ranges::non_negative)
-      .boolean("bond.compressive_breakage", m.compressive_breakage,
-               "Apply the normal-stress criterion (eq. 16) to compressed bonds too (default: stretched only, as MUSEN)");
+      .boolean(
+          "bond.compressive_breakage", m.compressive_breakage,
+          "Apply the normal-stress criterion (eq. 16) to compressed bonds too (default: stretched only, as MUSEN)");
 }
 
 }  // namespace
@@ -627,10 +644,11 @@ ConfigSchema compression_test_options(mechanics::UniaxialCompressionSetup& s) {
 }
 
 ConfigSchema compression_calibration_options(CompressionCalibrationRun& r) {
-  ConfigSchema schema("calibrate compress",
-                      "Calibration of the silica bond to a target Young's modulus and strength (eq. 18-19), or the bulk "
-                      "factor K_E (eq. 20) (docs/opal.md).",
-                      "calibrate_compress");
+  ConfigSchema schema(
+      "calibrate compress",
+      "Calibration of the silica bond to a target Young's modulus and strength (eq. 18-19), or the bulk "
+      "factor K_E (eq. 20) (docs/opal.md).",
+      "calibrate_compress");
   schema.number("target_youngs_modulus", r.target_youngs_modulus, "Target Young's modulus E* of the sample")
       .unit("Pa")
       .range(ranges::non_negative)

@@ -77,7 +77,15 @@ struct RelaxRun : EngineSettings {
 };
 ConfigSchema relax_options(RelaxRun& r);
 
-// `packlab generate vem` / packlab.generate_vem: the void expansion method.
+// The options of the algorithms (generate/*.hpp) the front ends expose, with their ranges: the
+// algorithms' validate() checks these and the parameters the front ends do not set.
+void add_ls_params(ConfigSchema& schema, generate::LsParams& p);
+void add_shake_params(ConfigSchema& schema, generate::ShakeParams& p);
+void add_fba_params(ConfigSchema& schema, generate::FbaParams& p);
+void add_opal_params(ConfigSchema& schema, generate::OpalOptions& o);
+
+// `packlab generate vem` / packlab.generate_vem: the void expansion method (VemParams::validate
+// checks these ranges and the rules between them).
 ConfigSchema vem_options(generate::VemParams& p);
 
 // An LS start from random points: `packlab generate ls` / packlab.generate_ls, and the LS part
