@@ -68,7 +68,47 @@ const std::string dump_head =
     "ITEM: ATOMS id x y z radius\n";
 
 // ---------------------------------------------------------------------------------------------
-// Bonds
+// Non-finite numbers
+
+TEST_F(ReaderChecks, NonFiniteBoxIsRefusedInEveryFormat) {
+  expect_input_error(write_file("a.xyz", "1\nLattice=\"1 0 0 0 1 0 0 0 1\" Origin=\"nan 0 0\" " + xyz_header +
+                                             "\nT0 0.5 0.5 0.5 0.1\n"),
+                     {"a.xyz:2:", "Origin entry = 'nan'", "finite"});
+  expect_input_error(write_file("a.csv", "# box lo nan 0 0 length 1 1 1 periodic T T T\nx,y,z,r\n0.5,0.5,0.5,0.1\n"),
+                     {"a.csv:1:", "box lo = 'nan'", "finite"});
+  expect_input_error(write_file("a.txt", "# box 1 inf 1\n0.5 0.5 0.5 0.1\n"), {"a.txt:1:", "'inf'", "finite"});
+  expect_input_error(write_file("a.data", "t\n\n1 atoms\n0 inf xlo xhi\n0 1 ylo yhi\n0 1 zlo zhi\n\nAtoms\n\n"
+                                          "1 1 0.2 1 0.5 0.5 0.5\n"),
+                     {"a.data:4:", "'inf'", "finite"});
+  expect_input_error(write_file("a.dump", "ITEM: TIMESTEP\n0\nITEM: NUMBER OF ATOMS\n1\nITEM: BOX BOUNDS pp pp pp\n"
+                                          "0 1\n0 inf\n0 1\nITEM: ATOMS x y z radius\n0.5 0.5 0.5 0.1\n"),
+                     {"a.dump:7:", "'inf'", "finite"});
+  // VTU: the box written by packlab, then its origin replaced by NaN.
+  Packing packing;
+  packing.box.length = {1, 1, 1};
+  packing.add({0.5, 0.5, 0.5}, 0.1);
+  write_packing(packing, file("ok.vtu"));
+  std::string text = read_text("ok.vtu");
+  const auto at = text.find('\n', text.find("Name=\"box_lo\"")) + 1;
+  text.replace(text.find('0', at), 1, "nan");
+  expect_input_error(write_file("a.vtu", text), {"a.vtu:", "'nan'", "box_lo", "finite"});
+}
+
+TEST_F(ReaderChecks, NonFiniteCoordinatesAndRadiiAreRefused) {
+  expect_input_error(write_file("b.xyz", "2\n" + xyz_header + "\nT0 0 0 0 1\nT0 0 NaN 0 1\n"),
+                     {"b.xyz:4:", "position coordinate = 'NaN'", "finite"});
+  expect_input_error(write_file("b.csv", "x,y,z,r\n0,0,0,1\n0,0,0,inf\n"), {"b.csv:3:", "radius r = 'inf'"});
+  expect_input_error(write_file("b.txt", "0 0 -inf 1\n"), {"b.txt:1:", "z = '-inf'"});
+  expect_input_error(write_file("b.dump", dump_head + "1 .5 .5 .5 .1\n2 .5 nan .5 .1\n"),
+                     {"b.dump:11:", "coordinate = 'nan'"});
+  expect_input_error(write_file("b.xyz2.xyz", "1\n" + xyz_header + ":velo:R:3\nT0 0 0 0 1 0 inf 0\n"),
+                     {"b.xyz2.xyz:3:", "velocity component = 'inf'"});
+  // Extra fields may hold NaN (a missing value), and read back as NaN.
+  const Packing with_nan_field =
+      read_packing(write_file("f.xyz", "1\n" + xyz_header + ":score:R:1\nT0 0 0 0 1 nan\n"));
+  ASSERT_EQ(with_nan_field.fields.size(), 1u);
+  EXPECT_TRUE(std::isnan(with_nan_field.fields[0].values[0]));
+}
 
 TEST_F(ReaderChecks, ValidateRefusesNonFiniteBoxOriginAndVelocities) {
   Packing packing;
@@ -93,6 +133,94 @@ TEST_F(ReaderChecks, ValidateRefusesNonFiniteBoxOriginAndVelocities) {
   EXPECT_FALSE(fs::exists(file("w.xyz")));
 }
 
+// ---------------------------------------------------------------------------------------------
+// Counts
+
+TEST_F(ReaderChecks, XyzCountMustMatchTheRows) {
+  expect_input_error(write_file("small.xyz", "1\n" + xyz_header + "\nT0 0 0 0 1\nT0 3 0 0 1\n"),
+                     {"small.xyz:4:", "line 1 announces 1 particles", "more lines"});
+  expect_input_error(write_file("large.xyz", "3\n" + xyz_header + "\nT0 0 0 0 1\nT0 3 0 0 1\n"),
+                     {"large.xyz", "3 particle lines", "found 2"});
+  // A count that is too large, followed by the next frame of a trajectory.
+  expect_input_error(
+      write_file("large2.xyz", "3\n" + xyz_header + "\nT0 0 0 0 1\nT0 3 0 0 1\n2\n" + xyz_header + "\n"),
+      {"large2.xyz:5:", "announces 3 particles, but only 2 particle lines"});
+  // Trajectories: only the first frame is read; trailing blank lines are fine.
+  const Packing first = read_packing(write_file(
+      "trajectory.xyz", "2\n" + xyz_header + "\nT0 0 0 0 1\nT0 3 0 0 1\n1\n" + xyz_header + "\nT0 9 9 9 1\n\n"));
+  EXPECT_EQ(first.size(), 2u);
+  EXPECT_EQ(read_packing(write_file("blank.xyz", "1\n" + xyz_header + "\nT0 0 0 0 1\n\n\n")).size(), 1u);
+}
+
+TEST_F(ReaderChecks, DumpCountMustMatchTheRows) {
+  expect_input_error(write_file("small.dump", dump_head + "1 .5 .5 .5 .1\n2 .5 .5 .5 .1\n3 .5 .5 .5 .1\n"),
+                     {"small.dump:12:", "NUMBER OF ATOMS is 2, but more atom lines follow"});
+  expect_input_error(write_file("large.dump", dump_head + "1 .5 .5 .5 .1\nITEM: TIMESTEP\n1\n"),
+                     {"large.dump:11:", "NUMBER OF ATOMS is 2, but the frame has only 1 atom lines"});
+  const Packing first =
+      read_packing(write_file("two_frames.dump", dump_head + "1 .5 .5 .5 .1\n2 .5 .5 .5 .1\n" + dump_head +
+                                                     "1 .5 .5 .5 .1\n2 .5 .5 .5 .1\n"));
+  EXPECT_EQ(first.size(), 2u);
+}
+
+// ---------------------------------------------------------------------------------------------
+// Particles outside an open box
+
+TEST_F(ReaderChecks, ParticleFarOutsideAnOpenBoxIsRefusedWithItsLine) {
+  const std::string lattice = "Lattice=\"10 0 0 0 10 0 0 0 10\" pbc=\"T T F\" ";
+  expect_input_error(write_file("far.xyz", "2\n" + lattice + xyz_header + "\nT0 5 5 5 0.5\nT0 5 5 25 0.5\n"),
+                     {"far.xyz:4:", "particle 1", "outside the open box along z", "z = 25", "radius 0.5",
+                      "box [0, 10]", "at most its radius + 1e-09"});
+  expect_input_error(write_file("far.csv", "# box lo 0 0 0 length 10 10 10 periodic F T T\nx,y,z,r\n-3,5,5,1\n"),
+                     {"far.csv:3:", "along x", "x = -3"});
+  expect_input_error(write_file("far.txt", "# box lo 0 0 0 length 10 10 10 periodic T F T\n5 11.6 5 0.5\n"),
+                     {"far.txt:2:", "along y"});
+  expect_input_error(write_file("far.data", "t pbc=T T F\n\n1 atoms\n0 10 xlo xhi\n0 10 ylo yhi\n0 10 zlo zhi\n\n"
+                                            "Atoms\n\n1 1 1 1 5 5 -20\n"),
+                     {"far.data:10:", "along z"});
+  expect_input_error(write_file("far.dump", dump_head + "2 .5 .5 .5 .1\n1 .5 .5 7 .1\n"),
+                     {"far.dump:11:", "particle 0", "along z"});
+  // Up to one radius (+ the tolerance) outside is accepted: the sphere still touches the box.
+  const double r = 0.5;
+  const Packing touching = read_packing(write_file(
+      "touching.xyz", fmt::format("2\n{}{}\nT0 5 5 {:.17g} {}\nT0 5 5 -0.5 {}\n", lattice, xyz_header,
+                                  10.0 + r + 0.5e-9 * 10.0, r, r)));
+  EXPECT_EQ(touching.size(), 2u);
+  // Periodic axes are not checked: positions there are wrapped by whoever uses them.
+  EXPECT_EQ(read_packing(write_file("periodic.xyz", "1\n" + lattice + xyz_header + "\nT0 25 -7 5 0.5\n")).size(),
+            1u);
+  // A box given by the caller must hold the particles too.
+  ReadOptions options;
+  options.box = Box{{0, 0, 0}, {1, 1, 1}, {false, false, false}};
+  EXPECT_THROW((void)read_packing(write_file("given.txt", "5 5 5 0.5\n"), options), InputError);
+}
+
+TEST_F(ReaderChecks, WritersWidenAnOpenBoxThatParticlesLeftSoTheFileReadsBack) {
+  // As a DEM run with an open z axis may leave it: one particle far above the box.
+  Packing packing;
+  packing.box = Box{{0, 0, 0}, {10, 10, 10}, {true, true, false}};
+  packing.add({5, 5, 5}, 0.5);
+  packing.add({5, 5, 30}, 0.5);
+  packing.add({5, 5, -0.25}, 0.5);  // sticks out, within the tolerance: no widening on its account
+  for (const char* name : {"w.xyz", "w.vtu", "w.data", "w.csv", "w.txt"}) {
+    SCOPED_TRACE(name);
+    write_packing(packing, file(name));
+    const Packing back = read_packing(file(name));
+    EXPECT_EQ(back.position, packing.position);
+    EXPECT_EQ(back.box.periodic, packing.box.periodic);
+    EXPECT_EQ(back.box.lo.x, 0.0);
+    EXPECT_EQ(back.box.length.x, 10.0);  // periodic axes untouched
+    EXPECT_EQ(back.box.lo.z, -0.75);     // the spheres' extent along the open axis
+    EXPECT_EQ(back.box.lo.z + back.box.length.z, 30.5);
+  }
+  // Inside the box, the box is written unchanged.
+  packing.position[1].z = 9.0;
+  write_packing(packing, file("inside.xyz"));
+  EXPECT_EQ(read_packing(file("inside.xyz")).box.length.z, 10.0);
+}
+
+// ---------------------------------------------------------------------------------------------
+// Bonds
 
 std::string vtu_with_bonds(const std::string& connectivity, std::size_t bonds, const std::string& images) {
   std::string cell_values, rest, offsets = "1 2 3", types = "1 1 1";

@@ -121,7 +121,11 @@ class VtuReader {
                                             detail::quote_token(name_or_unnamed(array)), count, expected));
   }
 
-  std::vector<double> doubles(const XmlElement& array, std::size_t expected) const {
+  // Finite numbers only (coordinates, radii, box, velocities, ...); `any_number` for extra fields,
+  // where nan marks a missing value.
+  enum class Numbers { finite, any_number };
+  std::vector<double> doubles(const XmlElement& array, std::size_t expected,
+                              Numbers allowed = Numbers::finite) const {
     std::vector<double> values;
     for_each_token(array, expected, [&](std::string_view token, std::size_t offset) {
       const auto value = detail::parse_double(token);
@@ -151,11 +155,13 @@ class VtuReader {
   // The DataArrays inside `parent`, each with a unique Name.
   std::vector<const XmlElement*> named_arrays(const XmlElement& parent) const {
     auto arrays = doc_.children(parent, "DataArray");
-    for (std::size_t a = 0; a < arrays.size(); ++a)
-      for (std::size_t b = 0; b < a; ++b)
-        if (name_of(*arrays[a]) == name_of(*arrays[b]))
-          doc_.fail_at(arrays[a]->start,
-                       fmt::format("second DataArray named {}", detail::quote_token(name_of(*arrays[a]))));
+    std::unordered_set<std::string_view> names;  // views of the attribute values held by doc_
+    for (const XmlElement* array : arrays) {
+      const std::string* name = array->attribute("Name");
+      if (!name) doc_.fail_at(array->start, "<DataArray> without a Name attribute");
+      if (!names.insert(*name).second)
+        doc_.fail_at(array->start, fmt::format("second DataArray named {}", detail::quote_token(*name)));
+    }
     return arrays;
   }
 
@@ -245,7 +251,7 @@ void read_point_data(const VtuReader& vtu, const XmlElement& piece, std::size_t 
       const auto flags = vtu.integers(*array, n, 0, 1);
       packing.fixed.assign(flags.begin(), flags.end());
     } else if (vtu.components_of(*array) == 1) {
-      packing.fields.push_back({name, vtu.doubles(*array, n)});
+      packing.fields.push_back({name, vtu.doubles(*array, n, VtuReader::Numbers::any_number)});
     } else {
       vtu.doc().fail_at(array->start, fmt::format("PointData array {} has {} components: only one-component "
                                                   "extra arrays are supported",
