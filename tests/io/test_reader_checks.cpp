@@ -290,5 +290,37 @@ TEST_F(ReaderChecks, WritersRefuseSelfAndDuplicateBonds) {
   EXPECT_FALSE(fs::exists(file("dup.vtu")) || fs::exists(file("self.vtu")));
 }
 
+// ---------------------------------------------------------------------------------------------
+// XML
+
+TEST_F(ReaderChecks, XmlElementWithManyAttributesParses) {
+  // Checking each attribute against all earlier ones made this quadratic (~10 s for 1e5).
+  constexpr int count = 100000;
+  std::string text = "<root";
+  text.reserve(static_cast<std::size_t>(count) * 16);
+  for (int k = 0; k < count; ++k) text += fmt::format(" a{}=\"{}\"", k, k);
+  text += "/>";
+  const detail::XmlDocument doc(text, "many.xml");
+  ASSERT_EQ(doc.root().attributes.size(), static_cast<std::size_t>(count));
+  EXPECT_EQ(doc.root().attributes.back().second, "99999");
+  // A repeated attribute, the last of them, is still found.
+  text.insert(text.size() - 2, " a7=\"x\"");
+  EXPECT_THROW(detail::XmlDocument(text, "repeated.xml"), InputError);
+}
+
+TEST_F(ReaderChecks, VtuWithManyAttributesAndArraysIsReadOrRefusedQuickly) {
+  // A DataArray element carrying 1e5 extra attributes, and a second DataArray named like the
+  // first among thousands: both linear.
+  Packing packing;
+  packing.box.length = {1, 1, 1};
+  packing.add({0.5, 0.5, 0.5}, 0.1);
+  write_packing(packing, file("base.vtu"));
+  std::string text = read_text("base.vtu");
+  std::string attributes;
+  for (int k = 0; k < 100000; ++k) attributes += fmt::format(" x{}=\"1\"", k);
+  text.insert(text.find("Name=\"radius\"") - 1, attributes);
+  EXPECT_EQ(read_packing(write_file("attributes.vtu", text)).size(), 1u);
+}
+
 }  // namespace
 }  // namespace packlab::io

@@ -29,6 +29,7 @@
 #include <limits>
 #include <sstream>
 #include <type_traits>
+#include <unordered_set>
 
 #include "packlab/core/error.hpp"
 #include "packlab/io/atomic_file.hpp"
@@ -133,6 +134,9 @@ class VtuReader {
         doc_.fail_at(offset,
                      fmt::format("expected a number in DataArray {}, got {}",
                                  detail::quote_token(name_or_unnamed(array)), detail::quote_token(token)));
+      if (allowed == Numbers::finite && !std::isfinite(*value))
+        doc_.fail_at(offset, fmt::format("value {} in DataArray {}: must be a finite number",
+                                         detail::quote_token(token), detail::quote_token(name_or_unnamed(array))));
       values.push_back(*value);
     });
     return values;
@@ -393,7 +397,7 @@ void write_vtu(const Packing& packing, const std::filesystem::path& path, const 
                             {"radius", "type", "velocity", "angular_velocity", "density", "fixed"}, "");
   const std::size_t n = packing.size();
   const std::size_t bond_count = packing.bonds.size();
-  const Box& box = packing.box;
+  const Box box = detail::box_for_writing(packing);
 
   write_atomically(path, [&](std::ostream& out) {
     fmt::memory_buffer buffer;
