@@ -10,12 +10,16 @@
 #include <pybind11/stl.h>
 #include <pybind11/stl/filesystem.h>
 
+#include <fmt/format.h>
+
 #include <array>
 #include <chrono>
 #include <cstddef>
 #include <cstdint>
+#include <limits>
 #include <memory>
 #include <string>
+#include <string_view>
 #include <type_traits>
 #include <utility>
 #include <vector>
@@ -82,24 +86,70 @@ inline py::array to_numpy_bool(std::vector<std::uint8_t>&& v) {
   return bool_view(*heap, owner);
 }
 
-// Copies an array-like into a vector of n elements (n < 0: any length); ValueError naming `what`.
+// `values` as a NumPy array whose dtype kind is one of `kinds` ('f' float, 'i'/'u' integer,
+// 'b' bool); packlab.InputError naming `what` otherwise (None, strings, objects, complex, or an
+// integer array given floats), so that a wrong type is never cast silently.
+inline py::array numeric_array(const py::handle& values, const char* what, std::string_view kinds,
+                               std::string_view expected) {
+  py::array a;
+  try {
+    a = py::module_::import("numpy").attr("asarray")(values);
+  } catch (const py::error_already_set&) {
+    fail_input(fmt::format("{}: must be {}, got {}", what, expected, std::string(py::repr(values)).substr(0, 60)));
+  }
+  const std::string kind = py::str(a.dtype().attr("kind"));
+  if (kind.size() != 1 || kinds.find(kind[0]) == std::string_view::npos) {
+    const std::string got = values.is_none() ? std::string("None")
+                                             : fmt::format("dtype {}", std::string(py::str(a.dtype())));
+    fail_input(fmt::format("{}: must be {}, got {}", what, expected, got));
+  }
+  return a;
+}
+
+// Copies an array-like into a vector of n elements (n < 0: any length); packlab.InputError
+// naming `what` on a wrong shape or type. Integer targets take integer (or bool) arrays only,
+// in the target's range; float targets take float or integer arrays.
 template <class T>
 std::vector<T> from_numpy(const py::handle& values, const char* what, py::ssize_t n = -1) {
-  auto a = py::array_t<T, py::array::c_style | py::array::forcecast>::ensure(values);
-  if (!a) throw py::value_error(std::string(what) + ": must be convertible to a NumPy array");
-  if (a.ndim() != 1) throw py::value_error(std::string(what) + ": must be a 1-D array");
-  if (n >= 0 && a.shape(0) != n)
-    throw py::value_error(std::string(what) + ": must have " + std::to_string(n) + " entries, got " +
-                          std::to_string(a.shape(0)));
-  return std::vector<T>(a.data(), a.data() + a.shape(0));
+  constexpr bool integral = std::is_integral_v<T>;
+  const char* expected = std::is_same_v<T, bool> ? "a 1-D array of booleans (or 0/1 integers)"
+                         : integral              ? "a 1-D array of integers"
+                                                 : "a 1-D array of numbers";
+  const py::array raw = numeric_array(values, what, integral ? "iub" : "fiu", expected);
+  if (raw.ndim() != 1) fail_input(fmt::format("{}: must be {}, got {} dimensions", what, expected, raw.ndim()));
+  if (n >= 0 && raw.shape(0) != n)
+    fail_input(fmt::format("{}: must have {} entries, got {}", what, n, raw.shape(0)));
+  if constexpr (integral && !std::is_same_v<T, bool>) {
+    // Through int64 (exact for every integer dtype but huge uint64), then a range check.
+    auto a = py::array_t<long long, py::array::c_style | py::array::forcecast>::ensure(raw);
+    if (!a) fail_input(fmt::format("{}: must be {}", what, expected));
+    std::vector<T> out(static_cast<std::size_t>(a.shape(0)));
+    for (py::ssize_t k = 0; k < a.shape(0); ++k) {
+      const long long v = a.at(k);
+      if (v < static_cast<long long>(std::numeric_limits<T>::min()) ||
+          v > static_cast<long long>(std::numeric_limits<T>::max()))
+        fail_input(fmt::format("{}[{}] = {}: must be in [{}, {}]", what, k, v, std::numeric_limits<T>::min(),
+                               std::numeric_limits<T>::max()));
+      out[static_cast<std::size_t>(k)] = static_cast<T>(v);
+    }
+    return out;
+  } else {
+    auto a = py::array_t<T, py::array::c_style | py::array::forcecast>::ensure(raw);
+    if (!a) fail_input(fmt::format("{}: must be {}", what, expected));
+    return std::vector<T>(a.data(), a.data() + a.shape(0));
+  }
 }
 
 inline std::vector<Vec3> vec3s_from_numpy(const py::handle& values, const char* what, py::ssize_t n = -1) {
-  auto a = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(values);
-  if (!a || a.ndim() != 2 || a.shape(1) != 3) throw py::value_error(std::string(what) + ": must be an N x 3 array");
-  if (n >= 0 && a.shape(0) != n)
-    throw py::value_error(std::string(what) + ": must have " + std::to_string(n) + " rows, got " +
-                          std::to_string(a.shape(0)));
+  const py::array raw = numeric_array(values, what, "fiu", "an N x 3 array of numbers");
+  if (raw.ndim() != 2 || raw.shape(1) != 3) {
+    std::string shape;
+    for (py::ssize_t d = 0; d < raw.ndim(); ++d) shape += fmt::format("{}{}", d ? " x " : "", raw.shape(d));
+    fail_input(fmt::format("{}: must be an N x 3 array, got shape ({})", what, shape));
+  }
+  if (n >= 0 && raw.shape(0) != n) fail_input(fmt::format("{}: must have {} rows, got {}", what, n, raw.shape(0)));
+  auto a = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(raw);
+  if (!a) fail_input(fmt::format("{}: must be an N x 3 array of numbers", what));
   std::vector<Vec3> out(static_cast<std::size_t>(a.shape(0)));
   for (py::ssize_t k = 0; k < a.shape(0); ++k) out[static_cast<std::size_t>(k)] = {a.at(k, 0), a.at(k, 1), a.at(k, 2)};
   return out;

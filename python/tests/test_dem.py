@@ -98,7 +98,10 @@ def test_engine_forces_stress_and_state():
 def test_bonded_model_holds_under_tension():
     p = packlab.generate_lattice(type="sc", cells=(2, 2, 2), radius=0.5)
     c = packlab.find_contacts(p)
-    p.set_bonds(c["i"], c["j"])
+    # 2 cells per periodic axis: each pair touches twice, directly and through the boundary, so
+    # the image of j (from the branch vector) is what tells the two bonds apart.
+    image = np.rint((p.positions[c["i"]] + c["branch"] - p.positions[c["j"]]) / np.array(p.box.length))
+    p.set_bonds(c["i"], c["j"], image=image.astype(int))
     bond = packlab.BondMaterial(normal_stiffness=100, shear_stiffness=10, normal_strength=1e3, shear_strength=1e3)
     e = packlab.Engine(p, normal_stiffness=100, shear_stiffness=10, bond_materials=[bond], threads=1)
     assert e.intact_bonds == 24

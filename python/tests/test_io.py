@@ -26,7 +26,10 @@ def test_round_trip_every_format(tmp_path, ext):
 def test_bonds_survive_vtu(tmp_path):
     p = packlab.generate_lattice(type="sc", cells=(2, 2, 2), radius=0.5)
     c = packlab.find_contacts(p)
-    p.set_bonds(c["i"], c["j"])
+    # 2 cells per periodic axis: each pair touches twice, directly and through the boundary, so
+    # the image of j (from the branch vector) is what tells the two bonds apart.
+    image = np.rint((p.positions[c["i"]] + c["branch"] - p.positions[c["j"]]) / np.array(p.box.length))
+    p.set_bonds(c["i"], c["j"], image=image.astype(int))
     packlab.write(p, tmp_path / "b.vtu")
     q = packlab.read(tmp_path / "b.vtu")
     assert len(q.bonds) == len(p.bonds)

@@ -86,7 +86,11 @@ def test_bonds_views_and_set_bonds():
     p = small()
     contacts = packlab.find_contacts(p, contact_eps=0.01)
     assert len(contacts["i"]) == 24  # sc 2x2x2 periodic: 3 bonds per particle
-    p.set_bonds(contacts["i"], contacts["j"], image=np.zeros((24, 3), dtype=int))
+    # In a 2-cell periodic box a pair touches twice (directly and through the boundary): the
+    # image of j tells the two bonds apart.
+    L = np.array(p.box.length)
+    image = np.rint((p.positions[contacts["i"]] + contacts["branch"] - p.positions[contacts["j"]]) / L).astype(int)
+    p.set_bonds(contacts["i"], contacts["j"], image=image)
     b = p.bonds
     assert len(b) == 24 and b.image.shape == (24, 3)
     # rest lengths default to the current bond vector length |r_j + image L - r_i|

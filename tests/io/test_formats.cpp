@@ -79,7 +79,18 @@ Packing random_packing(std::uint64_t seed, std::size_t n = 40) {
     const int i = static_cast<int>(rng() % n);
     const int j = static_cast<int>((static_cast<std::size_t>(i) + 1 + rng() % (n - 1)) % n);
     const std::array<int, 3> image{static_cast<int>(rng() % 3) - 1, 0, static_cast<int>(rng() % 3) - 1};
-    packing.bonds.add(i, j, image, static_cast<int>(rng() % 3), 0.2 + unit(rng), static_cast<int>(rng() % 2));
+    const int material = static_cast<int>(rng() % 3);
+    const double rest_length = 0.2 + unit(rng);
+    const int state = static_cast<int>(rng() % 2);
+    // A pair is bonded once (i, j, s and j, i, -s are the same bond): skip repeats.
+    bool repeated = false;
+    for (std::size_t c = 0; c < packing.bonds.size(); ++c) {
+      const auto& s = packing.bonds.image[c];
+      repeated |= (packing.bonds.i[c] == i && packing.bonds.j[c] == j && s == image) ||
+                  (packing.bonds.i[c] == j && packing.bonds.j[c] == i &&
+                   s == std::array<int, 3>{-image[0], -image[1], -image[2]});
+    }
+    if (!repeated) packing.bonds.add(i, j, image, material, rest_length, state);
   }
   packing.validate();
   return packing;

@@ -73,9 +73,15 @@ struct Packing {
   // Sum of sphere volumes over the box volume (overlaps counted twice).
   double volume_fraction() const;
 
-  // Throws InputError naming the first inconsistency (array sizes, negative radius,
-  // non-finite coordinate, bond index out of range, empty box).
+  // Throws InputError naming the first inconsistency: array sizes, a box that is not finite
+  // or not positive, a non-finite position, velocity or angular velocity, a radius or density
+  // that is not positive and finite, a negative type, and validate_bonds(). Extra fields may
+  // hold anything (NaN marks a missing value).
   void validate() const;
+  // Bond indices in range, no bond of a particle to itself (image 0 0 0; a bond to its own
+  // periodic image is allowed), no pair bonded twice (i, j, s and j, i, -s count as the same
+  // bond), rest lengths finite and >= 0.
+  void validate_bonds() const;
 
   const ScalarField* field(const std::string& name) const;
   ScalarField& field_or_add(const std::string& name);

@@ -86,6 +86,7 @@ Packing read_csv(const std::filesystem::path& path, const ReadOptions& options) 
   Packing packing;
   std::optional<Box> file_box;
   std::vector<CsvColumn> columns;  // empty until the header row (or first data row) is seen
+  std::vector<std::size_t> lines;  // of each particle
   while (reader.next_line()) {
     const std::string_view line = detail::trim(reader.line());
     if (line.empty()) continue;
@@ -127,8 +128,9 @@ Packing read_csv(const std::filesystem::path& path, const ReadOptions& options) 
       reader.fail(fmt::format("radius {:g}: must be positive and finite", radius));
     if (type < 0) reader.fail(fmt::format("type {}: must be >= 0", type));
     packing.add(position, radius, type);
+    lines.push_back(reader.line_number());
   }
-  detail::finish_reading(packing, file_box, options, path);
+  detail::finish_reading(packing, file_box, options, path, lines);
   return packing;
 }
 
@@ -144,7 +146,7 @@ void write_csv(const Packing& packing, const std::filesystem::path& path, const 
       fmt::format_to(std::back_inserter(buffer), "# packlab: {}\n", detail::single_line(options.comment));
     // Always the long form here: a CSV reader should not have to know the short one's defaults.
     fmt::format_to(std::back_inserter(buffer), "# {}\n",
-                   detail::format_box_comment(packing.box, /*allow_short_form=*/false));
+                   detail::format_box_comment(detail::box_for_writing(packing), /*allow_short_form=*/false));
     fmt::format_to(std::back_inserter(buffer), "x,y,z,r,type\n");
     for (std::size_t k = 0; k < packing.size(); ++k) {
       const Vec3& p = packing.position[k];

@@ -66,6 +66,7 @@ struct AtomRecord {
   double radius = 0.0;
   double density = 0.0;
   Vec3 position;
+  std::size_t line = 0;
 };
 
 struct VelocityRecord {
@@ -226,6 +227,7 @@ Packing read_lammps_data(const std::filesystem::path& path, const ReadOptions& o
                           "sphere), got {} columns",
                           tokens.size()));
         AtomRecord atom;
+        atom.line = reader.line_number();
         atom.id = reader.to_int(tokens[0], "atom id");
         const int file_type = reader.to_int(tokens[1], "atom type");
         if (file_type < 1 || (type_count && file_type > *type_count))
@@ -282,7 +284,9 @@ Packing read_lammps_data(const std::filesystem::path& path, const ReadOptions& o
   detail::sort_by_id(order, ids, path);
   Packing packing;
   std::unordered_map<long long, std::size_t> index_of_id;
+  std::vector<std::size_t> lines;
   for (const std::size_t k : order) {
+    lines.push_back(atoms[k].line);
     index_of_id.emplace(atoms[k].id, packing.size());
     packing.add(atoms[k].position, atoms[k].radius, atoms[k].type);
     packing.density.push_back(atoms[k].density);
@@ -303,14 +307,14 @@ Packing read_lammps_data(const std::filesystem::path& path, const ReadOptions& o
       packing.angular_velocity[found->second] = record.angular_velocity;
     }
   }
-  detail::finish_reading(packing, box, options, path);
+  detail::finish_reading(packing, box, options, path, lines);
   return packing;
 }
 
 void write_lammps_data(const Packing& packing, const std::filesystem::path& path,
                        const WriteOptions& options) {
   detail::validate_for_writing(packing, path);
-  const Box& box = packing.box;
+  const Box box = detail::box_for_writing(packing);
   const int type_count =
       packing.size() == 0 ? 1 : *std::max_element(packing.type.begin(), packing.type.end()) + 1;
   const bool with_velocities = !packing.velocity.empty() || !packing.angular_velocity.empty();

@@ -193,9 +193,14 @@ Packing read_lammps_dump(const std::filesystem::path& path, const ReadOptions& o
 
   // Atom lines.
   std::vector<long long> ids;
+  std::vector<std::size_t> lines;
   for (long long n = 0; n < *atom_count; ++n) {
     if (!reader.next_line())
       reader.fail_end_of_file(fmt::format("{} atom lines after ITEM: ATOMS, found {}", *atom_count, n));
+    if (detail::trim(reader.line()).starts_with("ITEM:"))
+      reader.fail(fmt::format("NUMBER OF ATOMS is {}, but the frame has only {} atom lines: the count must "
+                              "equal the number of atom lines",
+                              *atom_count, n));
     const auto tokens = detail::split(reader.line());
     if (tokens.size() != columns.size())
       reader.fail(
@@ -232,8 +237,18 @@ Packing read_lammps_dump(const std::filesystem::path& path, const ReadOptions& o
     }
     for (std::size_t c = 0; c < columns.size(); ++c)
       if (columns[c] == DumpColumn::field)
-        packing.fields[field_of_column[c]].values.push_back(reader.to_double(tokens[c], names[c]));
+        packing.fields[field_of_column[c]].values.push_back(reader.to_value(tokens[c], names[c]));
     packing.add(position, radius, type);
+    lines.push_back(reader.line_number());
+  }
+  // Only the first frame is read; what follows it is the next frame's ITEM: line or nothing.
+  while (reader.next_line()) {
+    const std::string_view line = detail::trim(reader.line());
+    if (line.empty()) continue;
+    if (line.starts_with("ITEM:")) break;
+    reader.fail(fmt::format("NUMBER OF ATOMS is {}, but more atom lines follow: the count must equal the "
+                            "number of atom lines",
+                            *atom_count));
   }
 
   if (id_column) {
@@ -244,6 +259,7 @@ Packing read_lammps_dump(const std::filesystem::path& path, const ReadOptions& o
       auto copy = values;
       for (std::size_t k = 0; k < order.size(); ++k) values[k] = copy[order[k]];
     };
+    permute(lines);
     permute(packing.position);
     permute(packing.radius);
     permute(packing.type);
@@ -252,7 +268,7 @@ Packing read_lammps_dump(const std::filesystem::path& path, const ReadOptions& o
     permute(packing.density);
     for (auto& field : packing.fields) permute(field.values);
   }
-  detail::finish_reading(packing, box, options, path);
+  detail::finish_reading(packing, box, options, path, lines);
   return packing;
 }
 

@@ -144,6 +144,13 @@ void LineReader::fail_end_of_file(std::string_view expected) const {
 }
 
 double LineReader::to_double(std::string_view token, std::string_view what) const {
+  const auto value = parse_double(token);
+  if (!value) fail(fmt::format("expected {} (a number), got {}", what, quote_token(token)));
+  if (!std::isfinite(*value)) fail(fmt::format("{} = {}: must be a finite number", what, quote_token(token)));
+  return *value;
+}
+
+double LineReader::to_value(std::string_view token, std::string_view what) const {
   if (auto value = parse_double(token)) return *value;
   fail(fmt::format("expected {} (a number), got {}", what, quote_token(token)));
 }
@@ -296,7 +303,7 @@ void check_field_names(const Packing& packing, const std::filesystem::path& path
 }
 
 void finish_reading(Packing& packing, const std::optional<Box>& file_box, const ReadOptions& options,
-                    const std::filesystem::path& path) {
+                    const std::filesystem::path& path, const std::vector<std::size_t>& lines) {
   if (options.box) {
     packing.box = *options.box;
   } else if (file_box) {
@@ -311,6 +318,46 @@ void finish_reading(Packing& packing, const std::optional<Box>& file_box, const 
   } catch (const InputError& error) {
     fail_input(fmt::format("{}: {}", path.string(), error.what()));
   }
+  if (const auto outside = first_outside_open_box(packing)) {
+    const Box& box = packing.box;
+    const std::size_t k = outside->particle;
+    const int axis = outside->axis;
+    const Vec3& p = packing.position[k];
+    const double r = packing.radius[k];
+    const std::string where =
+        lines.size() == packing.size() ? fmt::format("{}:{}", path.string(), lines[k]) : path.string();
+    fail_input(fmt::format(
+        "{}: particle {} lies outside the open box along {}: {} = {:.17g}, radius {:.17g}, box [{:.17g}, "
+        "{:.17g}]; a particle may stick out of an open side by at most its radius + {:g} of the box edge "
+        "(make the axis periodic, or give a box that holds every particle)",
+        where, k, "xyz"[axis], "xyz"[axis], p[axis], r, box.lo[axis], box.hi()[axis], open_box_tolerance));
+  }
+}
+
+std::optional<OutsideOpenBox> first_outside_open_box(const Packing& packing) {
+  const Box& box = packing.box;
+  for (std::size_t k = 0; k < packing.size(); ++k)
+    for (int a = 0; a < 3; ++a) {
+      if (box.periodic[static_cast<std::size_t>(a)]) continue;
+      const double slack = packing.radius[k] + open_box_tolerance * box.length[a];
+      const double x = packing.position[k][a];
+      if (x < box.lo[a] - slack || x > box.lo[a] + box.length[a] + slack) return OutsideOpenBox{k, a};
+    }
+  return std::nullopt;
+}
+
+Box box_for_writing(const Packing& packing) {
+  Box box = packing.box;
+  if (!first_outside_open_box(packing)) return box;
+  const Box spheres = bounding_box(packing);
+  for (int a = 0; a < 3; ++a) {
+    if (box.periodic[static_cast<std::size_t>(a)]) continue;
+    const double lo = std::min(box.lo[a], spheres.lo[a]);
+    const double hi = std::max(box.lo[a] + box.length[a], spheres.lo[a] + spheres.length[a]);
+    box.lo[a] = lo;
+    box.length[a] = hi - lo;
+  }
+  return box;
 }
 
 }  // namespace detail

@@ -11,6 +11,12 @@
 // .cpp file starts with the exact layout it writes and what its reader accepts.
 // Every writer is atomic and stores doubles with 17 significant digits, so a round trip
 // preserves every field exactly. Readers throw InputError naming file, line and problem.
+// Every reader rejects (Packing::validate and detail::finish_reading, shared by all formats):
+// non-finite box bounds, coordinates, radii, velocities and densities; a particle count in a
+// header that differs from the number of particle rows; self-bonds and bonds listed twice; and
+// a particle lying outside an open (non-periodic) side of the box by more than its radius +
+// 1e-9 of that box edge (detail::open_box_tolerance). Writers widen an open axis whose box
+// such a particle has left, so that their files always read back.
 #pragma once
 
 #include <cstddef>
@@ -82,7 +88,10 @@ class LineReader {
 
   [[noreturn]] void fail(std::string_view message) const;                 // names the current line
   [[noreturn]] void fail_end_of_file(std::string_view expected) const;    // "file ends after line N"
-  double to_double(std::string_view token, std::string_view what) const;  // fail() unless a number
+  // fail() unless a finite number (every coordinate, radius, box bound, velocity, density).
+  double to_double(std::string_view token, std::string_view what) const;
+  // Any number, nan and inf included: extra per-particle fields, where NaN marks a missing value.
+  double to_value(std::string_view token, std::string_view what) const;
   int to_int(std::string_view token, std::string_view what) const;        // fail() unless an int
 
  private:
@@ -122,9 +131,24 @@ void validate_for_writing(const Packing& packing, const std::filesystem::path& p
 void check_field_names(const Packing& packing, const std::filesystem::path& path,
                        const std::vector<std::string_view>& reserved, std::string_view forbidden);
 // Reader side: applies ReadOptions.box, else the file's box, else the bounding box, then
-// validate() with the file named in the message.
+// validate() and check_inside_open_box() with the file named in the message. `lines` (empty or
+// one per particle, in packing order) gives the line of each particle for the message.
 void finish_reading(Packing& packing, const std::optional<Box>& file_box, const ReadOptions& options,
-                    const std::filesystem::path& path);
+                    const std::filesystem::path& path, const std::vector<std::size_t>& lines = {});
+// How far a sphere may lie outside an open (non-periodic) side of the box, as a fraction of that
+// box edge, beyond touching it from outside: a particle whose centre is more than its radius
+// + open_box_tolerance * L outside the box along an open axis is rejected by every reader.
+inline constexpr double open_box_tolerance = 1e-9;
+// The first particle that the rule above rejects (and the axis), or nullopt.
+struct OutsideOpenBox {
+  std::size_t particle = 0;
+  int axis = 0;
+};
+std::optional<OutsideOpenBox> first_outside_open_box(const Packing& packing);
+// Writer side: the box to write. packing.box, unless a particle lies outside an open side (a
+// DEM run may let particles leave an open box); then that axis is widened to enclose every
+// sphere, so that whatever packlab writes reads back.
+Box box_for_writing(const Packing& packing);
 // LAMMPS readers: `order` = atom indices sorted by id (LAMMPS writes atoms in processor order);
 // InputError naming `path` on a repeated id.
 void sort_by_id(std::vector<std::size_t>& order, const std::vector<long long>& ids,

@@ -26,6 +26,7 @@ Packing read_text(const std::filesystem::path& path, const ReadOptions& options)
   detail::LineReader reader(path);
   Packing packing;
   std::optional<Box> file_box;
+  std::vector<std::size_t> lines;  // of each particle
   while (reader.next_line()) {
     const std::string_view line = detail::trim(reader.line());
     if (line.empty()) continue;
@@ -47,8 +48,9 @@ Packing read_text(const std::filesystem::path& path, const ReadOptions& options)
     const int type = tokens.size() == 5 ? reader.to_int(tokens[4], "type") : 0;
     if (type < 0) reader.fail(fmt::format("type {}: must be >= 0", type));
     packing.add(position, radius, type);
+    lines.push_back(reader.line_number());
   }
-  detail::finish_reading(packing, file_box, options, path);
+  detail::finish_reading(packing, file_box, options, path, lines);
   return packing;
 }
 
@@ -63,7 +65,7 @@ void write_text(const Packing& packing, const std::filesystem::path& path, const
     };
     // The box line comes first: PackingGeneration-style readers expect it on line 1.
     fmt::format_to(std::back_inserter(buffer), "# {}\n",
-                   detail::format_box_comment(packing.box, /*allow_short_form=*/true));
+                   detail::format_box_comment(detail::box_for_writing(packing), /*allow_short_form=*/true));
     if (!options.comment.empty())
       fmt::format_to(std::back_inserter(buffer), "# packlab: {}\n", detail::single_line(options.comment));
     for (std::size_t k = 0; k < packing.size(); ++k) {

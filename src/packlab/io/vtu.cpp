@@ -29,6 +29,7 @@
 #include <limits>
 #include <sstream>
 #include <type_traits>
+#include <unordered_set>
 
 #include "packlab/core/error.hpp"
 #include "packlab/io/atomic_file.hpp"
@@ -121,7 +122,11 @@ class VtuReader {
                                             detail::quote_token(name_or_unnamed(array)), count, expected));
   }
 
-  std::vector<double> doubles(const XmlElement& array, std::size_t expected) const {
+  // Finite numbers only (coordinates, radii, box, velocities, ...); `any_number` for extra fields,
+  // where nan marks a missing value.
+  enum class Numbers { finite, any_number };
+  std::vector<double> doubles(const XmlElement& array, std::size_t expected,
+                              Numbers allowed = Numbers::finite) const {
     std::vector<double> values;
     for_each_token(array, expected, [&](std::string_view token, std::size_t offset) {
       const auto value = detail::parse_double(token);
@@ -129,6 +134,9 @@ class VtuReader {
         doc_.fail_at(offset,
                      fmt::format("expected a number in DataArray {}, got {}",
                                  detail::quote_token(name_or_unnamed(array)), detail::quote_token(token)));
+      if (allowed == Numbers::finite && !std::isfinite(*value))
+        doc_.fail_at(offset, fmt::format("value {} in DataArray {}: must be a finite number",
+                                         detail::quote_token(token), detail::quote_token(name_or_unnamed(array))));
       values.push_back(*value);
     });
     return values;
@@ -151,11 +159,13 @@ class VtuReader {
   // The DataArrays inside `parent`, each with a unique Name.
   std::vector<const XmlElement*> named_arrays(const XmlElement& parent) const {
     auto arrays = doc_.children(parent, "DataArray");
-    for (std::size_t a = 0; a < arrays.size(); ++a)
-      for (std::size_t b = 0; b < a; ++b)
-        if (name_of(*arrays[a]) == name_of(*arrays[b]))
-          doc_.fail_at(arrays[a]->start,
-                       fmt::format("second DataArray named {}", detail::quote_token(name_of(*arrays[a]))));
+    std::unordered_set<std::string_view> names;  // views of the attribute values held by doc_
+    for (const XmlElement* array : arrays) {
+      const std::string* name = array->attribute("Name");
+      if (!name) doc_.fail_at(array->start, "<DataArray> without a Name attribute");
+      if (!names.insert(*name).second)
+        doc_.fail_at(array->start, fmt::format("second DataArray named {}", detail::quote_token(*name)));
+    }
     return arrays;
   }
 
@@ -245,7 +255,7 @@ void read_point_data(const VtuReader& vtu, const XmlElement& piece, std::size_t 
       const auto flags = vtu.integers(*array, n, 0, 1);
       packing.fixed.assign(flags.begin(), flags.end());
     } else if (vtu.components_of(*array) == 1) {
-      packing.fields.push_back({name, vtu.doubles(*array, n)});
+      packing.fields.push_back({name, vtu.doubles(*array, n, VtuReader::Numbers::any_number)});
     } else {
       vtu.doc().fail_at(array->start, fmt::format("PointData array {} has {} components: only one-component "
                                                   "extra arrays are supported",
@@ -387,7 +397,7 @@ void write_vtu(const Packing& packing, const std::filesystem::path& path, const 
                             {"radius", "type", "velocity", "angular_velocity", "density", "fixed"}, "");
   const std::size_t n = packing.size();
   const std::size_t bond_count = packing.bonds.size();
-  const Box& box = packing.box;
+  const Box box = detail::box_for_writing(packing);
 
   write_atomically(path, [&](std::ostream& out) {
     fmt::memory_buffer buffer;

@@ -4,7 +4,9 @@
 
 #include <algorithm>
 #include <charconv>
+#include <string_view>
 #include <system_error>
+#include <unordered_set>
 
 #include "packlab/core/error.hpp"
 #include "packlab/io/packing_io.hpp"
@@ -114,6 +116,9 @@ std::size_t XmlDocument::read_start_tag(std::size_t lt, std::vector<std::size_t>
   element.start = lt;
   element.name = read_name(p);
   bool self_closing = false;
+  // The keys seen so far, as views into text_ (which never changes), so that the check for a
+  // repeated attribute stays linear in the number of attributes.
+  std::unordered_set<std::string_view> keys;
   while (true) {
     while (p < text_.size() && is_space(text_[p])) ++p;
     if (p >= text_.size())
@@ -127,7 +132,9 @@ std::size_t XmlDocument::read_start_tag(std::size_t lt, std::vector<std::size_t>
       self_closing = true;
       break;
     }
+    const std::size_t key_begin = p;
     std::string key = read_name(p);
+    const std::string_view key_in_text = std::string_view(text_).substr(key_begin, p - key_begin);
     while (p < text_.size() && is_space(text_[p])) ++p;
     if (p >= text_.size() || text_[p] != '=') fail_at(p, fmt::format("attribute {} has no '=value'", key));
     ++p;
@@ -139,7 +146,7 @@ std::size_t XmlDocument::read_start_tag(std::size_t lt, std::vector<std::size_t>
     const std::string_view raw = std::string_view(text_).substr(p + 1, close - p - 1);
     if (raw.find('<') != std::string_view::npos)
       fail_at(p, fmt::format("'<' in the value of attribute {}", key));
-    if (element.attribute(key)) fail_at(p, fmt::format("attribute {} appears twice", key));
+    if (!keys.insert(key_in_text).second) fail_at(p, fmt::format("attribute {} appears twice", key));
     element.attributes.emplace_back(std::move(key), decode_entities(raw, p));
     p = close + 1;
   }

@@ -277,10 +277,16 @@ Packing read_xyz(const std::filesystem::path& path, const ReadOptions& options) 
   std::vector<std::string> species;
   const bool species_gives_type = has_species_column && !has_type_column;
 
+  std::vector<std::size_t> lines;
   for (long long n = 0; n < *count; ++n) {
     if (!reader.next_line())
       reader.fail_end_of_file(fmt::format("{} particle lines after line 2, found {}", *count, n));
     const auto tokens = detail::split(reader.line(), " \t");
+    if (tokens.size() == 1 && detail::parse_integer(tokens[0]))
+      reader.fail(fmt::format("line 1 announces {} particles, but only {} particle lines follow before this "
+                              "line (the count of the next frame?): the count must equal the number of "
+                              "particle lines",
+                              *count, n));
     if (tokens.size() != column_count)
       reader.fail(fmt::format("expected {} columns as Properties says, got {}", column_count, tokens.size()));
     Vec3 position, velocity, angular_velocity;
@@ -324,7 +330,7 @@ Packing read_xyz(const std::filesystem::path& path, const ReadOptions& options) 
                   fmt::format("{} = {}: expected T or F", property.name, detail::quote_token(token(0))));
             value = *flag ? 1.0 : 0.0;
           } else {
-            value = reader.to_double(token(0), property.name);
+            value = reader.to_value(token(0), property.name);
           }
           packing.fields[property.field_index].values.push_back(value);
           break;
@@ -338,9 +344,21 @@ Packing read_xyz(const std::filesystem::path& path, const ReadOptions& options) 
     if (has_velocity) packing.velocity.push_back(velocity);
     if (has_angular_velocity) packing.angular_velocity.push_back(angular_velocity);
     packing.add(position, radius, type);
+    lines.push_back(reader.line_number());
+  }
+  // What follows the particle lines: nothing, or the next frame of a trajectory (its count on a
+  // line of its own). A further particle line means the count on line 1 is too small.
+  while (reader.next_line()) {
+    const auto tokens = detail::split(reader.line(), " \t");
+    if (tokens.empty()) continue;
+    if (tokens.size() == 1 && detail::parse_integer(tokens[0])) break;
+    reader.fail(fmt::format("line 1 announces {} particles, but the file goes on with more lines: the count "
+                            "must equal the number of particle lines (or a next frame must start with its "
+                            "count)",
+                            *count));
   }
   if (species_gives_type) packing.type = types_from_species(species);
-  detail::finish_reading(packing, file_box, options, path);
+  detail::finish_reading(packing, file_box, options, path, lines);
   return packing;
 }
 
@@ -349,7 +367,7 @@ void write_xyz(const Packing& packing, const std::filesystem::path& path, const 
   std::vector<std::string_view> reserved;  // a field under one of these would read back as something else
   for (const auto& known : known_properties) reserved.push_back(known.name);
   detail::check_field_names(packing, path, reserved, " \t:\"=");
-  const Box& box = packing.box;
+  const Box box = detail::box_for_writing(packing);
   std::string header = fmt::format(
       "Lattice=\"{:.17g} 0 0 0 {:.17g} 0 0 0 {:.17g}\" Origin=\"{:.17g} {:.17g} {:.17g}\" pbc=\"{} {} {}\" "
       "Properties=species:S:1:pos:R:3:radius:R:1",
