@@ -14,6 +14,7 @@
 #include "packlab/core/error.hpp"
 #include "packlab/core/packing.hpp"
 #include "packlab/io/packing_io.hpp"
+#include "io_test_dir.hpp"
 
 namespace packlab::io {
 namespace {
@@ -21,36 +22,13 @@ namespace {
 namespace fs = std::filesystem;
 
 // A fresh folder per test, removed afterwards.
-class FormatsTest : public ::testing::Test {
+class FormatsTest : public IoTestDir {
  protected:
-  void SetUp() override {
-    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    dir_ = fs::path(::testing::TempDir()) / (std::string("packlab_io_") + info->test_suite_name() + "_" +
-                                             info->name() + "_" + std::to_string(::getpid()));
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-  }
-  void TearDown() override {
-    std::error_code ec;
-    fs::remove_all(dir_, ec);
-  }
-
-  fs::path file(const std::string& name) const { return dir_ / name; }
-
-  fs::path write_file(const std::string& name, const std::string& text) const {
-    const fs::path path = file(name);
-    std::ofstream out(path, std::ios::binary);
-    out << text;
-    return path;
-  }
-
   // Writes `original` to `name` (the format from the extension) and reads it back.
   Packing round_trip(const Packing& original, const std::string& name, const WriteOptions& options = {}) const {
     write_packing(original, file(name), options);
     return read_packing(file(name));
   }
-
-  fs::path dir_;
 };
 
 // Every optional field filled, full-precision doubles, several types, bonds with images.

@@ -17,6 +17,7 @@
 #include "packlab/core/error.hpp"
 #include "packlab/core/packing.hpp"
 #include "packlab/io/packing_io.hpp"
+#include "io_test_dir.hpp"
 #include "packlab/io/xml.hpp"
 
 namespace packlab::io {
@@ -24,30 +25,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-class ReaderChecks : public ::testing::Test {
- protected:
-  void SetUp() override {
-    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    dir_ = fs::path(::testing::TempDir()) /
-           fmt::format("packlab_reader_checks_{}_{}", info->name(), static_cast<long>(::getpid()));
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-  }
-  void TearDown() override {
-    std::error_code ec;
-    fs::remove_all(dir_, ec);
-  }
-  fs::path file(const std::string& name) const { return dir_ / name; }
-  fs::path write_file(const std::string& name, const std::string& text) const {
-    std::ofstream(file(name), std::ios::binary) << text;
-    return file(name);
-  }
-  std::string read_text(const std::string& name) const {
-    std::ifstream in(file(name), std::ios::binary);
-    return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-  }
-  fs::path dir_;
-};
+class ReaderChecks : public IoTestDir {};
 
 // One line, every part present.
 void expect_input_error(const fs::path& path, std::initializer_list<std::string> parts) {
@@ -88,7 +66,7 @@ TEST_F(ReaderChecks, NonFiniteBoxIsRefusedInEveryFormat) {
   packing.box.length = {1, 1, 1};
   packing.add({0.5, 0.5, 0.5}, 0.1);
   write_packing(packing, file("ok.vtu"));
-  std::string text = read_text("ok.vtu");
+  std::string text = file_text("ok.vtu");
   const auto at = text.find('\n', text.find("Name=\"box_lo\"")) + 1;
   text.replace(text.find('0', at), 1, "nan");
   expect_input_error(write_file("a.vtu", text), {"a.vtu:", "'nan'", "box_lo", "finite"});
@@ -315,7 +293,7 @@ TEST_F(ReaderChecks, VtuWithManyAttributesAndArraysIsReadOrRefusedQuickly) {
   packing.box.length = {1, 1, 1};
   packing.add({0.5, 0.5, 0.5}, 0.1);
   write_packing(packing, file("base.vtu"));
-  std::string text = read_text("base.vtu");
+  std::string text = file_text("base.vtu");
   std::string attributes;
   for (int k = 0; k < 100000; ++k) attributes += fmt::format(" x{}=\"1\"", k);
   text.insert(text.find("Name=\"radius\"") - 1, attributes);

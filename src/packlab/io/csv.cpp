@@ -90,13 +90,7 @@ Packing read_csv(const std::filesystem::path& path, const ReadOptions& options) 
   while (reader.next_line()) {
     const std::string_view line = detail::trim(reader.line());
     if (line.empty()) continue;
-    if (line.front() == '#') {
-      if (auto box = detail::parse_box_comment(line.substr(1), reader)) {
-        if (file_box) reader.fail("second '# box' line: a file holds one box");
-        file_box = box;
-      }
-      continue;
-    }
+    if (detail::read_comment_line(line, reader, file_box)) continue;
     const auto fields = split_fields(line);
     if (columns.empty()) {
       if (!detail::parse_double(fields.front())) {

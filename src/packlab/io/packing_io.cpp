@@ -266,6 +266,15 @@ std::optional<Box> parse_box_comment(std::string_view comment, const LineReader&
   return box;
 }
 
+bool read_comment_line(std::string_view line, const LineReader& reader, std::optional<Box>& box) {
+  if (line.empty() || line.front() != '#') return false;
+  if (auto b = parse_box_comment(line.substr(1), reader)) {
+    if (box) reader.fail("second '# box' line: a file holds one box");
+    box = b;
+  }
+  return true;
+}
+
 std::string format_box_comment(const Box& box, bool allow_short_form) {
   if (allow_short_form && box.lo == Vec3{0.0, 0.0, 0.0} &&
       box.periodic == std::array<bool, 3>{true, true, true})

@@ -120,6 +120,9 @@ std::string single_line(std::string_view text);
 //   box lo X Y Z length Lx Ly Lz periodic T T F           any box
 // Returns nullopt when the comment is not a box line; fails on a malformed one.
 std::optional<Box> parse_box_comment(std::string_view comment, const LineReader& reader);
+// For the column formats (csv, txt): true if `line` is a comment ('#'); a '# box' comment is
+// read into `box` (a second one is an error).
+bool read_comment_line(std::string_view line, const LineReader& reader, std::optional<Box>& box);
 // Short form when allowed and lo = 0 and periodic on every axis, else the long form.
 std::string format_box_comment(const Box& box, bool allow_short_form);
 

@@ -30,13 +30,7 @@ Packing read_text(const std::filesystem::path& path, const ReadOptions& options)
   while (reader.next_line()) {
     const std::string_view line = detail::trim(reader.line());
     if (line.empty()) continue;
-    if (line.front() == '#') {
-      if (auto box = detail::parse_box_comment(line.substr(1), reader)) {
-        if (file_box) reader.fail("second '# box' line: a file holds one box");
-        file_box = box;
-      }
-      continue;
-    }
+    if (detail::read_comment_line(line, reader, file_box)) continue;
     const auto tokens = detail::split(line);
     if (tokens.size() != 4 && tokens.size() != 5)
       reader.fail(fmt::format("expected 'x y z r' or 'x y z r type', got {} columns", tokens.size()));
