@@ -155,6 +155,12 @@ void add_generate_ls(CLI::App& generate) {
           generate::ls_stop_name(st.stop), packing.volume_fraction(), st.reduced_pressure, st.collisions,
           static_cast<double>(st.collisions) / st.seconds, static_cast<double>(st.events()) / st.seconds, run.out,
           seconds);
+    // One rule with generate fba: a target that was not reached is an error (exit 2), the
+    // files of what was reached are kept for inspection.
+    if (o.phi > 0.0 && st.stop != generate::LsStop::target_reached)
+      fail_input(fmt::format("phi = {:g}: not reached, the run stopped ({}) at phi {:.4f} (files written to {}); "
+                             "random close packing is near 0.64 for equal spheres",
+                             o.phi, generate::ls_stop_name(st.stop), packing.volume_fraction(), run.out));
   });
 }
 

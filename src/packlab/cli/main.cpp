@@ -4,6 +4,7 @@
 
 #include <CLI/CLI.hpp>
 #include <cstdio>
+#include <new>
 #include <exception>
 #include <string>
 
@@ -69,6 +70,12 @@ int main(int argc, char** argv) {
     return 2;
   } catch (const packlab::InputError& e) {
     std::fprintf(stderr, "packlab: error: %s\n", e.what());
+    return 2;
+  } catch (const std::bad_alloc&) {
+    // A size the estimates let through, or a machine short of free memory: the input's fault
+    // more than the program's, and nothing was half-written (outputs are atomic).
+    std::fprintf(stderr, "packlab: error: out of memory: the problem is too large for the free memory of this machine; "
+                         "use fewer particles or a larger machine\n");
     return 2;
   } catch (const std::exception& e) {
     std::fprintf(stderr, "packlab: internal error: %s\n", e.what());

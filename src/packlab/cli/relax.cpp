@@ -34,8 +34,10 @@ void add_relax(CLI::App& app) {
       [log](const OptionCommand<io::RelaxRun>& c) {
         const auto t0 = std::chrono::steady_clock::now();
         const Packing packing = io::read_packing(c.in);
-        // Check the output path before running (no surprise after a long run).
+        // Check the output paths before running (no surprise after a long run).
         (void)io::format_from_path(c.out);
+        io::check_writable_file(c.out);
+        if (!log->empty()) io::check_writable_file(*log);
         const dem::EngineConfig config = c.settings.config();
         const dem::Material& material = config.types.front();
         dem::Engine engine(packing, config);

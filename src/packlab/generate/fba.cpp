@@ -10,6 +10,7 @@
 #include <numeric>
 
 #include "packlab/core/error.hpp"
+#include "packlab/core/memory.hpp"
 #include "packlab/core/neighbor_list.hpp"
 #include "packlab/io/options.hpp"
 
@@ -110,6 +111,8 @@ FbaResult fba_pack(const Box& box, const std::vector<double>& relative_radius, c
   const auto t0 = std::chrono::steady_clock::now();
   const std::size_t n = relative_radius.size();
   require(n >= 1 && n <= 100'000'000, "particles", static_cast<double>(n), "in [1, 1e8]");
+  // Positions, radii, displacements, cell lists: about 200 bytes per sphere.
+  require_memory("particles", static_cast<double>(n), static_cast<double>(n), 200.0);
   for (int a = 0; a < 3; ++a)
     require(box.length[a] > 0.0 && std::isfinite(box.length[a]), std::string("box length ") + "xyz"[a], box.length[a],
             "> 0 m");

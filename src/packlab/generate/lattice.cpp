@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "packlab/core/error.hpp"
+#include "packlab/core/memory.hpp"
 
 namespace packlab::generate {
 
@@ -47,6 +48,9 @@ Packing make_lattice(const LatticeParams& p) {
     case LatticeType::bcc: basis = {{0, 0, 0}, {0.5, 0.5, 0.5}}; break;
     case LatticeType::fcc: basis = {{0, 0, 0}, {0.5, 0.5, 0}, {0.5, 0, 0.5}, {0, 0.5, 0.5}}; break;
   }
+  // A packing costs at least position, radius, type and flags per sphere (~64 bytes).
+  require_memory("cells", static_cast<double>(p.cells[0]) * p.cells[1] * p.cells[2],
+                 static_cast<double>(p.cells[0]) * p.cells[1] * p.cells[2] * static_cast<double>(basis.size()), 64.0);
   const double a = lattice_constant(p);
   Packing packing;
   packing.box.lo = {0, 0, 0};

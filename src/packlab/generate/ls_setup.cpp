@@ -11,6 +11,7 @@
 #include <string>
 
 #include "packlab/core/error.hpp"
+#include "packlab/core/memory.hpp"
 #include "packlab/generate/ls.hpp"
 #include "packlab/generate/overlap_check.hpp"
 
@@ -264,6 +265,9 @@ LsStart make_ls_start(long particles, const SizeClasses& classes, double radius,
                       Random& rng) {
   classes.validate();
   require(particles >= 2 && particles <= 100'000'000, "particles", static_cast<double>(particles), "in [2, 1e8]");
+  // The event-driven state (positions, velocities, event calendar, cells, neighbour lists)
+  // measured at about 555 bytes per sphere (bench/bench_ls).
+  require_memory("particles", static_cast<double>(particles), static_cast<double>(particles), 555.0);
   require(radius > 0.0 && std::isfinite(radius), "radius", radius, "> 0 m");
   require(volume_fraction > 0.0 && volume_fraction < 1.0, "volume_fraction", volume_fraction, "in (0, 1)");
   const std::vector<long> count = classes.counts(particles);

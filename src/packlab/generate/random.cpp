@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "packlab/core/error.hpp"
+#include "packlab/core/memory.hpp"
 
 namespace packlab::generate {
 
@@ -19,6 +20,7 @@ Packing make_random_packing(const RandomPackingParams& p, Random& rng) {
   require(p.particles >= 1 && p.particles <= 100'000'000, "particles", static_cast<double>(p.particles),
           "in [1, 1e8]");
   require(p.radius > 0.0 && std::isfinite(p.radius), "radius", p.radius, "> 0 m");
+  require_memory("particles", static_cast<double>(p.particles), static_cast<double>(p.particles), 64.0);
   const double max_phi = p.allow_overlap ? 1.0 : rsa_max_volume_fraction;
   require(p.volume_fraction > 0.0 && p.volume_fraction < max_phi, "volume_fraction", p.volume_fraction,
           p.allow_overlap ? std::string("in (0, 1)")

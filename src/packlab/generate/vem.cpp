@@ -11,6 +11,7 @@
 #include "packlab/analyze/coordination.hpp"
 #include "packlab/core/binary_io.hpp"
 #include "packlab/core/error.hpp"
+#include "packlab/core/memory.hpp"
 #include "packlab/io/options.hpp"
 
 namespace packlab::generate {
@@ -141,6 +142,10 @@ double vem_box_edge(long structural, double radius, double phi_s) {
 void VemParams::validate() const {
   VemParams copy = *this;
   io::vem_options(copy).validate();  // every declared range, materials included
+  // The DEM engine's per-particle state, neighbour list and contact histories: several
+  // hundred bytes per particle (DESIGN.md memory notes); 500 is a lower bound.
+  const double particles = static_cast<double>(structural) + static_cast<double>(voids);
+  require_memory("structural + voids", particles, particles, 500.0);
   dem::validate({structural_material, void_material}, dem::LinearContact::properties);
   require(max_q >= void_radius_ratio && std::isfinite(max_q), "stop.max_q", max_q,
           ">= void_radius_ratio (largest r_V / r_S recorded)");

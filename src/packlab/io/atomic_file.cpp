@@ -52,4 +52,18 @@ void ensure_directory(const std::filesystem::path& dir) {
   if (ec) fail_input(fmt::format("cannot create output folder {}: {}", dir.string(), ec.message()));
 }
 
+void check_writable_file(const std::filesystem::path& path) {
+  std::error_code ec;
+  if (std::filesystem::is_directory(path, ec)) fail_input(fmt::format("{}: is a folder, not a file", path.string()));
+  const std::filesystem::path dir = path.has_parent_path() ? path.parent_path() : std::filesystem::path(".");
+  if (!std::filesystem::is_directory(dir, ec))
+    fail_input(fmt::format("{}: the folder {} does not exist", path.string(), dir.string()));
+  const std::filesystem::path probe = dir / fmt::format(".packlab-probe-{}", static_cast<long>(::getpid()));
+  {
+    std::ofstream out(probe, std::ios::binary);
+    if (!out) fail_input(fmt::format("{}: cannot write in the folder {}", path.string(), dir.string()));
+  }
+  std::filesystem::remove(probe, ec);
+}
+
 }  // namespace packlab::io

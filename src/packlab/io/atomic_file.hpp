@@ -19,4 +19,8 @@ void write_text_atomically(const std::filesystem::path& path, const std::string&
 // Creates `dir` (and parents); InputError if it exists as a non-directory or cannot be made.
 void ensure_directory(const std::filesystem::path& dir);
 
+// Checks before a long run that `path` can be written: not a folder, its folder exists and
+// takes a new file. InputError naming the path otherwise; nothing is left behind.
+void check_writable_file(const std::filesystem::path& path);
+
 }  // namespace packlab::io

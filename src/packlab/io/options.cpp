@@ -455,7 +455,8 @@ ConfigSchema bond_options(BondOptions& o) {
       .number("cutoff_ratio", o.cutoff_ratio,
               "Elastic model: bond pairs closer than this times r_i + r_j (1.75 d for equal spheres)")
       .range({1.0, 2.0, false, true})
-      .integer("threads", o.threads, "Threads of the pair search");
+      .integer("threads", o.threads, "Threads of the pair search")
+      .range({1.0, 1024.0, false, false});
   return schema;
 }
 

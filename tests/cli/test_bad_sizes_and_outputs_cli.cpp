@@ -1,0 +1,63 @@
+// Inputs a new user tries that used to crash, run for minutes before failing, or succeed
+// silently: each now stops at once with one line and exit code 2, and leaves no output.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include "cli_runner.hpp"
+
+using packlab::test::run_packlab;
+using packlab::test::TempDir;
+
+namespace {
+
+void expect_refused(const std::string& args, const std::string& key) {
+  const auto r = run_packlab(args);
+  EXPECT_EQ(r.exit_code, 2) << args << "\n" << r.output;
+  EXPECT_NE(r.output.find(key), std::string::npos) << args << "\n" << r.output;
+  EXPECT_LE(std::count(r.output.begin(), r.output.end(), '\n'), 1) << r.output;
+}
+
+}  // namespace
+
+TEST(BadSizes, RefusedWithTheMemoryEstimateBeforeAllocating) {
+  TempDir dir("bad-sizes");
+  // 4e9 spheres (256 GB) and 1e12 VEM particles: more than any machine this runs on.
+  expect_refused("generate lattice --type fcc --cells 1000,1000,1000 --out " + dir.file("l.xyz"), "GB");
+  expect_refused("generate vem --structural 1000000000000 --check --out " + dir.file("v"), "GB");
+  EXPECT_FALSE(std::filesystem::exists(dir.file("l.xyz")));
+}
+
+TEST(BadOptions, ThreadCountsOutOfRange) {
+  TempDir dir("bad-threads");
+  ASSERT_EQ(run_packlab("generate lattice --type sc --cells 3,3,3 --out " + dir.file("sc.xyz")).exit_code, 0);
+  expect_refused("bond " + dir.file("sc.xyz") + " --threads -1 --out " + dir.file("b.vtu"), "threads");
+  expect_refused("relax " + dir.file("sc.xyz") + " " + dir.file("r.xyz") + " --threads 100000", "threads");
+  EXPECT_FALSE(std::filesystem::exists(dir.file("b.vtu")));
+}
+
+TEST(BadOutputs, CheckedBeforeTheRun) {
+  TempDir dir("bad-outputs");
+  ASSERT_EQ(run_packlab("generate lattice --type sc --cells 3,3,3 --out " + dir.file("sc.xyz")).exit_code, 0);
+  ASSERT_EQ(run_packlab("bond " + dir.file("sc.xyz") + " --out " + dir.file("b.vtu") + " --quiet").exit_code, 0);
+  std::ofstream(dir.file("a-file")) << "x";
+  // An output folder that is a file, an output file in a folder that does not exist, a log
+  // that cannot be written: refused before any step runs.
+  expect_refused("test compress " + dir.file("b.vtu") + " --out " + dir.file("a-file") + " --quiet", "a-file");
+  expect_refused("relax " + dir.file("sc.xyz") + " " + dir.file("no/such/r.xyz") + " --quiet", "does not exist");
+  expect_refused(
+      "relax " + dir.file("sc.xyz") + " " + dir.file("r.xyz") + " --log " + dir.file("no/l.csv") + " --quiet",
+      "does not exist");
+  EXPECT_FALSE(std::filesystem::exists(dir.file("r.xyz")));
+}
+
+TEST(Targets, AnLsTargetThatIsNotReachedIsAnError) {
+  TempDir dir("ls-target");
+  const auto r = run_packlab("generate ls --particles 200 --phi 0.9 --no-plots --quiet --out " + dir.file("ls"));
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_NE(r.output.find("phi = 0.9: not reached"), std::string::npos) << r.output;
+  EXPECT_TRUE(std::filesystem::exists(dir.file("ls/packing.xyz")));  // what was reached, for inspection
+}
