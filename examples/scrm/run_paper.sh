@@ -49,13 +49,13 @@ printf '%s\n' "${jobs[@]}" | xargs -P "$JOBS" -I{} bash -c 'run_case {}'
 # Averaged RDFs (realizations in parallel inside analyze rdf).
 for d in "$OUT"/mono-*-c* "$OUT"/bi-*-c* "$OUT"/bi7000-*-c*; do
   [ -f "$d/rdf/report.json" ] && continue
-  "$PACKLAB" analyze rdf "$d"/r*/packing.xyz --partial --dr 0.01 --rmax 10 --out "$d/rdf" --quiet
+  "$PACKLAB" analyze rdf "$d"/r*/packing.xyz --partial --dr 0.01 --r-max 10 --out "$d/rdf" --quiet
 done
 
 # Simple cubic lattice: I(r) for four bin widths (radius 1, lattice spacing 2).
 "$PACKLAB" generate lattice --type sc --cells 6 6 6 --radius 1 --out "$OUT/sc.xyz" --quiet
 for dr in 0.1 0.01 0.005 0.003; do
-  "$PACKLAB" analyze rdf "$OUT/sc.xyz" --dr "$dr" --rmax 5 --out "$OUT/sc-dr$dr" --no-plots --quiet
+  "$PACKLAB" analyze rdf "$OUT/sc.xyz" --dr "$dr" --r-max 5 --out "$OUT/sc-dr$dr" --no-plots --quiet
 done
 
 # Fast compression of 10,000 spheres to jamming (reduced pressure 1e12) at several rates.

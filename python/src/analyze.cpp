@@ -1,6 +1,7 @@
 // Analyses like freud's: parameters in the constructor, compute(packing), results as arrays.
 #include "common.hpp"
 #include "packlab/analyze/coordination.hpp"
+#include "packlab/io/options.hpp"
 
 namespace packlab::python {
 
@@ -32,11 +33,11 @@ removed repeatedly (rattler_rule "iterative", the k-core) or flagged once ("sing
 compute(packing, reset=True) returns self; reset=False accumulates realizations. Reading a
 result before compute raises. Per-particle arrays describe the last packing.
 )doc")
-      .def(py::init([](double contact_eps, int rattler_threshold, const std::string& rattler_rule) {
-             return Coordination(contact_eps, rattler_threshold, analyze::rattler_rule_from_name(rattler_rule));
-           }),
-           py::kw_only(), py::arg("contact_eps") = 0.01, py::arg("rattler_threshold") = 4,
-           py::arg("rattler_rule") = "iterative")
+      .def(py::init([](const py::kwargs& kwargs) {
+        io::CoordinationSettings s;
+        apply_keywords(io::coordination_options(s), kwargs, "Coordination").validate();
+        return Coordination(s.contact_eps, s.rattler_threshold, analyze::rattler_rule_from_name(s.rattler_rule));
+      }))
       .def(
           "compute",
           [](py::object self, const Packing& packing, bool reset) {

@@ -1,6 +1,7 @@
 // The fabric tensor of the contacts (analyze/fabric.hpp).
 #include "common.hpp"
 #include "packlab/analyze/fabric.hpp"
+#include "packlab/io/options.hpp"
 
 namespace packlab::python {
 
@@ -8,12 +9,16 @@ void bind_analyze_fabric(py::module_& m) {
   using namespace analyze;
 
   py::class_<Fabric>(m, "Fabric", R"doc(
-Fabric tensor of the contact normals. Fabric(contact_eps=0.01, bins=18, exclude_rattlers=False,
-rattler_threshold=4); compute(packing, reset=True); tensor (3 x 3, trace 1), deviator,
+Fabric tensor of the contact normals. Fabric(contact_eps=0.01, fabric_bins=18,
+fabric_without_rattlers=False, rattler_threshold=4) (the options of `packlab analyze`); compute(packing, reset=True); tensor (3 x 3, trace 1), deviator,
 eigenvalues (descending), anisotropy, contacts, normal_density, bin_centers.
 )doc")
-      .def(py::init<double, int, bool, int>(), py::kw_only(), py::arg("contact_eps") = 0.01, py::arg("bins") = 18,
-           py::arg("exclude_rattlers") = false, py::arg("rattler_threshold") = 4)
+      .def(py::init([](const py::kwargs& kwargs) {
+        io::CoordinationSettings contacts;
+        io::FabricSettings s;
+        apply_keywords(io::fabric_options(contacts, s), kwargs, "Fabric").validate();
+        return Fabric(contacts.contact_eps, s.fabric_bins, s.fabric_without_rattlers, contacts.rattler_threshold);
+      }))
       .def(
           "compute",
           [](py::object self, const Packing& p, bool reset) {

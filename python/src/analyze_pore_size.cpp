@@ -3,6 +3,7 @@
 #include "common.hpp"
 #include "packlab/analyze/pore_size.hpp"
 #include "packlab/core/random.hpp"
+#include "packlab/io/options.hpp"
 
 namespace packlab::python {
 
@@ -11,25 +12,17 @@ void bind_analyze_pore_size(py::module_& m) {
 
   py::class_<PoreSize>(m, "PoreSize", R"doc(
 Pore-size distribution P(r_P > r) by the exclusion probability (doh-elastic-properties eq. 6).
-PoreSize(points=0, band=0.005, confidence=0.95, definition="pore_space", wall_margin=-1,
-threads=0): points counted per packing (0 = from the confidence band), definition
+PoreSize(points=0, band=0.005, confidence=0.95, pore_definition="pore_space", wall_margin=-1,
+threads=0): points counted per packing (0 = from the confidence band), pore_definition
 "pore_space" or "all_points", wall_margin [m] along open axes (< 0 = one mean diameter).
 compute(packing, seed=1, reset=True); curve() -> dict r [m], probability, std_error,
 band_low, band_high; fit_doh() -> the erf fit giving the degree of heterogeneity (a, b).
 )doc")
-      .def(py::init([](long points, double band, double confidence, const std::string& definition,
-                       double wall_margin, int threads) {
-             PoreSizeParams p;
-             p.points = points;
-             p.band = band;
-             p.confidence = confidence;
-             p.definition = pore_definition_from_name(definition);
-             p.wall_margin = wall_margin;
-             p.threads = threads;
-             return PoreSize(p);
-           }),
-           py::kw_only(), py::arg("points") = 0, py::arg("band") = 0.005, py::arg("confidence") = 0.95,
-           py::arg("definition") = "pore_space", py::arg("wall_margin") = -1.0, py::arg("threads") = 0)
+      .def(py::init([](const py::kwargs& kwargs) {
+        io::PoreSizeSettings s;
+        apply_keywords(io::pore_size_options(s), kwargs, "PoreSize").validate();
+        return PoreSize(s.params());
+      }))
       .def(
           "compute",
           [](py::object self, const Packing& p, std::uint64_t seed, bool reset) {
@@ -55,8 +48,9 @@ band_low, band_high; fit_doh() -> the erf fit giving the degree of heterogeneity
           },
           py::arg("points") = 201, py::arg("frame") = -1)
       .def("probability", &PoreSize::probability, py::arg("r"), py::arg("frame") = -1)
-      .def("distances", [](const PoreSize& s, int frame) { return to_numpy(std::vector<double>(s.distances(frame))); },
-           py::arg("frame") = -1, "Distance of each counted point to the nearest particle surface [m].")
+      .def(
+          "distances", [](const PoreSize& s, int frame) { return to_numpy(std::vector<double>(s.distances(frame))); },
+          py::arg("frame") = -1, "Distance of each counted point to the nearest particle surface [m].")
       .def_property_readonly("frames", &PoreSize::frames)
       .def("porosity", &PoreSize::porosity, py::arg("frame") = -1)
       .def("porosity_std_error", &PoreSize::porosity_std_error, py::arg("frame") = -1)
@@ -64,13 +58,10 @@ band_low, band_high; fit_doh() -> the erf fit giving the degree of heterogeneity
       .def("mean_radius", &PoreSize::mean_radius, py::arg("frame") = -1)
       .def(
           "fit_doh",
-          [](const PoreSize& s, double r0, double x_min, double x_max, double p_min, int grid, int frame) {
-            DohFitOptions o;
-            o.r0 = r0;
-            o.x_min = x_min;
-            o.x_max = x_max;
-            o.p_min = p_min;
-            o.grid = grid;
+          [](const PoreSize& s, int frame, const py::kwargs& kwargs) {
+            io::DohFitSettings settings;
+            apply_keywords(io::doh_fit_options(settings), kwargs, "fit_doh").validate();
+            const DohFitOptions o = settings.options();
             const DohFit f = fit_degree_of_heterogeneity(s, o, frame);
             py::dict d;
             d["a"] = f.fit.a;
@@ -85,9 +76,9 @@ band_low, band_high; fit_doh() -> the erf fit giving the degree of heterogeneity
             d["x_max"] = f.x_max;
             return namespace_of(d);
           },
-          py::kw_only(), py::arg("r0") = 0.0, py::arg("x_min") = 0.0, py::arg("x_max") = 0.0, py::arg("p_min") = 1e-3,
-          py::arg("grid") = 100, py::arg("frame") = -1,
-          "Error-function fit of eq. 6: a (degree of heterogeneity) and b in units of r0 [m] (0 = mean radius).");
+          py::kw_only(), py::arg("frame") = -1,
+          "Error-function fit of eq. 6: a (degree of heterogeneity) and b in units of r0 [m] (0 = mean radius). "
+          "Keywords r0, fit_range (XMIN, XMAX of r/r0), fit_p_min, fit_grid as the options of `packlab analyze`.");
   m.def("pore_erf_model", &pore_erf_model, py::arg("x"), py::arg("a"), py::arg("b"), "The eq. 6 model P(x; a, b).");
 }
 

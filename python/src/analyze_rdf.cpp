@@ -2,6 +2,7 @@
 #include "common.hpp"
 #include "packlab/analyze/rdf.hpp"
 #include "packlab/analyze/reference_rdf.hpp"
+#include "packlab/io/options.hpp"
 
 namespace packlab::python {
 
@@ -10,23 +11,17 @@ void bind_analyze_rdf(py::module_& m) {
 
   py::class_<Rdf>(m, "Rdf", R"doc(
 Radial distribution function g(r) and partial g_km via the K-function (`packlab analyze rdf`).
-Rdf(dr=0.01, r_max=8.0, window_radius=2.5, edge="automatic", threads=0): dr and r_max in units
+Rdf(dr=0.01, r_max=8.0, window_radius=2.5, edge="auto", threads=0): dr and r_max in units
 of the reference radius a (the largest class radius); edge: "automatic" (toroidal when every
 axis is periodic), "toroidal", "ripley" or "minus_sampling". compute(packing) forgets earlier
 realizations, accumulate(packing) adds one. Class k = -1 means all particles.
 )doc")
-      .def(py::init([](double dr, double r_max, double window_radius, const std::string& edge, int threads) {
-             RdfParams p;
-             p.dr = dr;
-             p.r_max = r_max;
-             p.window_radius = window_radius;
-             p.edge = edge_correction_from_name(edge);
-             p.threads = threads;
-             p.validate();
-             return Rdf(p);
-           }),
-           py::kw_only(), py::arg("dr") = 0.01, py::arg("r_max") = 8.0, py::arg("window_radius") = 2.5,
-           py::arg("edge") = "automatic", py::arg("threads") = 0)
+      .def(py::init([](const py::kwargs& kwargs) {
+        io::RdfSettings s;
+        const io::ConfigSchema schema = apply_keywords(io::rdf_options(s), kwargs, "Rdf");
+        schema.validate();
+        return Rdf(s.validated());
+      }))
       .def(
           "compute",
           [](py::object self, const Packing& p) {
@@ -51,18 +46,23 @@ realizations, accumulate(packing) adds one. Class k = -1 means all particles.
       .def_property_readonly("classes", &Rdf::classes)
       .def_property_readonly("class_radius", &Rdf::class_radius, "Radius of each size class, largest first [m].")
       .def_property_readonly("reference_radius", &Rdf::reference_radius, "a [m]")
-      .def_property_readonly("r", [](const Rdf& r) { return to_numpy(r.reduced_r()); }, "Bin centres r/a.")
-      .def("g", [](const Rdf& r, int k, int l) { return to_numpy(r.g(k, l)); }, py::arg("k") = -1, py::arg("m") = -1,
-           "g(r) (partial g_km for classes k, m).")
-      .def("k_function", [](const Rdf& r, int k, int l) { return to_numpy(r.k_function(k, l)); }, py::arg("k") = -1,
-           py::arg("m") = -1)
-      .def("shell_count", [](const Rdf& r, int k, int l) { return to_numpy(r.shell_count(k, l)); }, py::arg("k") = -1,
-           py::arg("m") = -1)
+      .def_property_readonly(
+          "r", [](const Rdf& r) { return to_numpy(r.reduced_r()); }, "Bin centres r/a.")
+      .def(
+          "g", [](const Rdf& r, int k, int l) { return to_numpy(r.g(k, l)); }, py::arg("k") = -1, py::arg("m") = -1,
+          "g(r) (partial g_km for classes k, m).")
+      .def(
+          "k_function", [](const Rdf& r, int k, int l) { return to_numpy(r.k_function(k, l)); }, py::arg("k") = -1,
+          py::arg("m") = -1)
+      .def(
+          "shell_count", [](const Rdf& r, int k, int l) { return to_numpy(r.shell_count(k, l)); }, py::arg("k") = -1,
+          py::arg("m") = -1)
       .def("contact_value", &Rdf::contact_value, py::arg("k") = -1, py::arg("m") = -1, "g at contact, g(2a+).")
       .def("peaks", &Rdf::peaks, py::arg("k") = -1, py::arg("m") = -1, py::arg("count") = 4,
            "Positions r/a of the first peaks.")
-      .def("window_histogram", [](const Rdf& r, int k) { return to_numpy(r.window_histogram(k)); },
-           py::arg("k") = -1, "p(n): fraction of windows holding n centres.")
+      .def(
+          "window_histogram", [](const Rdf& r, int k) { return to_numpy(r.window_histogram(k)); }, py::arg("k") = -1,
+          "p(n): fraction of windows holding n centres.")
       .def("windows", &Rdf::windows, py::arg("k") = -1);
 
   auto ref = m.def_submodule("reference", "Analytic reference RDFs (well-stirred, Willis, Percus-Yevick).");

@@ -83,6 +83,25 @@ def test_flags_keys_and_keywords_are_one_set(cli, command, function, args):
     assert python_keywords(function, args) == expected_keywords
 
 
+def keywords_of(call):
+    """The keywords a function or class takes, from its message for an unknown one."""
+    with pytest.raises(packlab.InputError) as e:
+        call(no_such_option=1)
+    return set(re.search(r"known: ([^)]*)\)", str(e.value)).group(1).split(", "))
+
+
+def test_analyze_takes_the_keywords_of_the_analysis_classes(cli):
+    # `packlab analyze` runs several analyses: its options are the union of their classes'.
+    rows = declared(cli, "analyze")
+    assert help_flags(cli, "analyze") == {flag(k) for k, _, _ in rows}
+    classes = (keywords_of(packlab.Coordination) | keywords_of(packlab.PoreSize) | keywords_of(packlab.Fabric)
+               | keywords_of(packlab.PoreSize().fit_doh))
+    assert {k for k, _, cli_only in rows if not cli_only} == classes
+    rows = declared(cli, "analyze rdf")
+    assert help_flags(cli, "analyze rdf") == {flag(k) for k, _, _ in rows}
+    assert {k for k, _, cli_only in rows if not cli_only} == keywords_of(packlab.Rdf)
+
+
 def test_keyword_values_are_checked_like_config_values():
     with pytest.raises(packlab.InputError, match="relax_max_steps"):
         packlab.generate_vem(relax_max_steps=1.5)

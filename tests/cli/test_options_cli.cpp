@@ -18,7 +18,7 @@ namespace {
 const char* const ported[] = {"generate lattice", "generate random", "generate vem", "generate ls",
                               "generate scrm",    "generate fba",    "build opal",   "shake",
                               "bond",             "relax",           "test shear",   "calibrate shear",
-                              "test compress",    "calibrate compress"};
+                              "test compress",    "calibrate compress", "analyze", "analyze rdf"};
 
 // Flags that steer the run rather than set an option.
 const std::set<std::string> run_control{"--help",     "--config", "--out",   "--resume", "--no-plots",

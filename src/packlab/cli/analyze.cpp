@@ -1,8 +1,7 @@
-// packlab analyze FILE... --out DIR [--what all|cn|pores|doh|fabric|rdf] [--contact-eps 0.01]
-//   [--rattler-threshold 4] [--rattler-rule iterative|single_pass] [--points N] [--band 0.005]
-//   [--pore-definition pore_space|all_points] [--wall-margin M] [--r0 R] [--fit-range XMIN XMAX]
-//   [--fit-p-min 1e-3] [--fabric-bins 18] [--fabric-without-rattlers] [--box LX LY LZ]
-//   [--origin X Y Z] [--periodic PX PY PZ] [--seed 1] [--threads 0] [--quiet] [--no-plots]
+// packlab analyze FILE... --out DIR [--config FILE.toml] [every option of io::analyze_options as a flag:
+//   --what all|cn|pores|doh|fabric|rdf --contact-eps 0.01 --rattler-threshold 4 --points N --band 0.005
+//   --pore-definition pore_space|all_points --r0 R --fit-range XMIN,XMAX --fabric-bins 18 --box LX,LY,LZ
+//   --periodic PX,PY,PZ --seed 1 --threads 0 ...] [--quiet] [--no-plots]
 //
 // Several files are realizations of one structure: coordination and fabric statistics are
 // accumulated over all of them, pore-size points are pooled (equal numbers per file), and the
@@ -24,10 +23,12 @@
 #include "packlab/analyze/pore_size.hpp"
 #include "packlab/analyze/rdf.hpp"
 #include "packlab/cli/commands.hpp"
+#include "packlab/cli/options.hpp"
 #include "packlab/cli/scrm_common.hpp"
 #include "packlab/core/error.hpp"
 #include "packlab/core/random.hpp"
 #include "packlab/io/atomic_file.hpp"
+#include "packlab/io/options.hpp"
 #include "packlab/io/packing_io.hpp"
 #include "packlab/io/plot.hpp"
 #include "packlab/io/report.hpp"
@@ -36,28 +37,9 @@ namespace packlab::cli {
 
 namespace {
 
-struct AnalyzeOptions {
+struct AnalyzeOptions : io::AnalyzeRun {
   std::vector<std::string> files;
   std::string out;
-  std::vector<std::string> what{"all"};
-  double contact_eps = 0.01;
-  int rattler_threshold = 4;
-  std::string rattler_rule = "iterative";
-  long points = 0;
-  double band = 0.005;
-  double confidence = 0.95;
-  std::string pore_definition = "pore_space";
-  double wall_margin = -1.0;
-  double r0 = 0.0;
-  std::vector<double> fit_range;
-  double fit_p_min = 1e-3;
-  int fit_grid = 100;
-  int fabric_bins = 18;
-  bool fabric_without_rattlers = false;
-  std::vector<double> box, origin;
-  std::vector<int> periodic;
-  std::uint64_t seed = 1;
-  int threads = 0;
   bool quiet = false;
   bool no_plots = false;
 };
@@ -82,11 +64,14 @@ std::string g17(double v) { return fmt::format("{:.17g}", v); }
 Packing read_one(const std::string& file, const AnalyzeOptions& opt) {
   io::ReadOptions ro;
   if (!opt.box.empty()) {
+    if (opt.box.size() != 3) fail_input(fmt::format("box: must be LX,LY,LZ, got {} values", opt.box.size()));
     Box b;
     b.length = {opt.box[0], opt.box[1], opt.box[2]};
     for (int a = 0; a < 3; ++a)
       require(opt.box[a] > 0.0 && std::isfinite(opt.box[a]), fmt::format("box[{}]", "xyz"[a]), opt.box[a],
               "a positive length [m]");
+    if (!opt.origin.empty() && opt.origin.size() != 3)
+      fail_input(fmt::format("origin: must be X,Y,Z, got {} values", opt.origin.size()));
     if (!opt.origin.empty()) b.lo = {opt.origin[0], opt.origin[1], opt.origin[2]};
     // A user-given box is open unless --periodic says otherwise.
     b.periodic = {false, false, false};
@@ -96,6 +81,8 @@ Packing read_one(const std::string& file, const AnalyzeOptions& opt) {
   }
   Packing p = io::read_packing(file, ro);
   if (!opt.periodic.empty()) {
+    if (opt.periodic.size() != 3)
+      fail_input(fmt::format("periodic: must be PX,PY,PZ, got {} values", opt.periodic.size()));
     for (int a = 0; a < 3; ++a) {
       require(opt.periodic[a] == 0 || opt.periodic[a] == 1, fmt::format("periodic[{}]", "xyz"[a]), opt.periodic[a],
               "0 or 1");
@@ -110,7 +97,13 @@ void run_analyze(const AnalyzeOptions& opt) {
   const auto t0 = std::chrono::steady_clock::now();
   // What to do.
   std::set<std::string> what;
-  for (const auto& w : opt.what) {
+  std::vector<std::string> listed;
+  for (std::size_t begin = 0; begin <= opt.what.size();) {
+    const std::size_t comma = std::min(opt.what.find(',', begin), opt.what.size());
+    listed.push_back(opt.what.substr(begin, comma - begin));
+    begin = comma + 1;
+  }
+  for (const auto& w : listed) {
     if (w == "all") {
       what.insert({"cn", "pores", "doh", "fabric", "rdf"});
     } else if (w == "cn" || w == "pores" || w == "doh" || w == "fabric" || w == "rdf") {
@@ -124,31 +117,18 @@ void run_analyze(const AnalyzeOptions& opt) {
              do_fabric = what.count("fabric") > 0, do_rdf = what.count("rdf") > 0;
 
   // Parameters first, so bad values fail before any file is read.
-  analyze::Coordination cn(opt.contact_eps, opt.rattler_threshold, analyze::rattler_rule_from_name(opt.rattler_rule));
-  analyze::PoreSizeParams pp;
-  pp.points = opt.points;
-  pp.band = opt.band;
-  pp.confidence = opt.confidence;
-  pp.definition = analyze::pore_definition_from_name(opt.pore_definition);
-  pp.wall_margin = opt.wall_margin;
-  pp.threads = opt.threads;
-  require(opt.threads >= 0, "threads", opt.threads, "0 (all cores) or positive");
+  const io::CoordinationSettings& cs = opt.coordination;
+  analyze::Coordination cn(cs.contact_eps, cs.rattler_threshold, analyze::rattler_rule_from_name(cs.rattler_rule));
+  const analyze::PoreSizeParams pp = opt.pores.params();
   analyze::PoreSize pores(pp);
-  analyze::DohFitOptions fo;
-  fo.r0 = opt.r0;
-  fo.p_min = opt.fit_p_min;
-  fo.grid = opt.fit_grid;
-  if (!opt.fit_range.empty()) {
-    fo.x_min = opt.fit_range[0];
-    fo.x_max = opt.fit_range[1];
-    require(fo.x_max > fo.x_min, "fit_range max", fo.x_max, fmt::format("greater than fit_range min = {:g}", fo.x_min));
-  }
+  const analyze::DohFitOptions fo = opt.fit.options();
   if (do_doh && pp.definition != analyze::PoreDefinition::pore_space)
     fail_input("pore_definition = all_points: the degree-of-heterogeneity fit (--what doh, all) needs pore_space");
-  analyze::Fabric fabric(opt.contact_eps, opt.fabric_bins, opt.fabric_without_rattlers, opt.rattler_threshold);
-  // RDF with the defaults of `packlab analyze rdf` (which has the options: --dr, --rmax, ...).
+  analyze::Fabric fabric(cs.contact_eps, opt.fabric.fabric_bins, opt.fabric.fabric_without_rattlers,
+                         cs.rattler_threshold);
+  // RDF with the defaults of `packlab analyze rdf` (which has the options: --dr, --r-max, ...).
   analyze::RdfParams rdf_params;
-  rdf_params.threads = opt.threads;
+  rdf_params.threads = pp.threads;
   rdf_params.validate();
   analyze::Rdf rdf(rdf_params);
   std::vector<Packing> rdf_packings;  // for the class volume fractions
@@ -157,26 +137,10 @@ void run_analyze(const AnalyzeOptions& opt) {
   Random rng(opt.seed);
 
   nlohmann::json report = io::report_header("analyze");
-  report["parameters"] = {{"what", std::vector<std::string>(what.begin(), what.end())},
-                          {"contact_eps", opt.contact_eps},
-                          {"rattler_threshold", opt.rattler_threshold},
-                          {"rattler_rule", opt.rattler_rule},
-                          {"points", opt.points},
-                          {"points_used_per_file", pores.target_points()},
-                          {"band", opt.band},
-                          {"confidence", opt.confidence},
-                          {"pore_definition", opt.pore_definition},
-                          {"wall_margin_m", opt.wall_margin},
-                          {"r0_m", opt.r0},
-                          {"fit_range_r_over_r0", opt.fit_range},
-                          {"fit_p_min", opt.fit_p_min},
-                          {"fit_grid", opt.fit_grid},
-                          {"fabric_bins", opt.fabric_bins},
-                          {"fabric_without_rattlers", opt.fabric_without_rattlers},
-                          {"box_m", opt.box},
-                          {"origin_m", opt.origin},
-                          {"periodic", opt.periodic},
-                          {"threads", opt.threads}};
+  io::AnalyzeRun reported = opt;
+  report["parameters"] = io::analyze_options(reported).json();
+  report["parameters"]["what"] = std::vector<std::string>(what.begin(), what.end());
+  report["parameters"]["points_used_per_file"] = pores.target_points();
   report["seed"] = opt.seed;
   report["files"] = opt.files;
 
@@ -190,7 +154,7 @@ void run_analyze(const AnalyzeOptions& opt) {
     phi.push_back(packing.volume_fraction());
     pf["volume_fraction"] = phi.back();
     if (do_cn) {
-      analyze::Coordination one(opt.contact_eps, opt.rattler_threshold, cn.rattler_rule());
+      analyze::Coordination one(opt.coordination.contact_eps, opt.coordination.rattler_threshold, cn.rattler_rule());
       one.compute(packing);
       cn.compute(packing, /*reset=*/f == 0);
       cn_mean.push_back(one.mean());
@@ -249,8 +213,8 @@ void run_analyze(const AnalyzeOptions& opt) {
                               {"distribution", cn.distribution()}};
     // Distribution table.
     std::ostringstream csv;
-    csv << "# packlab analyze: particles by number of contacts, contact_eps = " << opt.contact_eps << ", over "
-        << opt.files.size() << " file(s)\n";
+    csv << "# packlab analyze: particles by number of contacts, contact_eps = " << opt.coordination.contact_eps
+        << ", over " << opt.files.size() << " file(s)\n";
     csv << "contacts,particles,fraction\n";
     const auto& dist = cn.distribution();
     for (std::size_t k = 0; k < dist.size(); ++k)
@@ -291,7 +255,7 @@ void run_analyze(const AnalyzeOptions& opt) {
   if (do_pores) {
     const int grid = 201;
     const analyze::PoreSize::Curve curve = pores.curve(grid);
-    nlohmann::json ps = {{"definition", opt.pore_definition},
+    nlohmann::json ps = {{"definition", opt.pores.pore_definition},
                          {"realizations", pores.frames()},
                          {"points_per_file", pores.target_points()},
                          {"points", pores.counted_points()},
@@ -299,7 +263,7 @@ void run_analyze(const AnalyzeOptions& opt) {
                          {"porosity_sampled", pores.porosity()},
                          {"porosity_sampled_std_error", pores.porosity_std_error()},
                          {"band_half_width", pores.band()},
-                         {"confidence", opt.confidence},
+                         {"confidence", opt.pores.confidence},
                          {"mean_radius_m", pores.mean_radius()},
                          {"largest_distance_m", pores.distances().back()}};
     analyze::DohFit d;
@@ -321,9 +285,10 @@ void run_analyze(const AnalyzeOptions& opt) {
       report["doh"] = doh;
     }
     std::ostringstream csv;
-    csv << "# packlab analyze: cumulative pore-size distribution P(r_P > r), definition " << opt.pore_definition << ", "
-        << pores.counted_points() << " points over " << pores.frames() << " file(s); band: uniform " << opt.confidence
-        << " confidence band (DKW), half-width " << g17(pores.band()) << "; r in the packing's length unit";
+    csv << "# packlab analyze: cumulative pore-size distribution P(r_P > r), definition " << opt.pores.pore_definition
+        << ", " << pores.counted_points() << " points over " << pores.frames() << " file(s); band: uniform "
+        << opt.pores.confidence << " confidence band (DKW), half-width " << g17(pores.band())
+        << "; r in the packing's length unit";
     if (do_doh) csv << "; fit: eq. 6 with a = " << g17(d.fit.a) << ", b = " << g17(d.fit.b) << ", r0 = " << g17(d.r0);
     csv << "\nr,probability,std_error,band_low,band_high" << (do_doh ? ",fit" : "") << '\n';
     for (std::size_t k = 0; k < curve.r.size(); ++k) {
@@ -353,7 +318,7 @@ void run_analyze(const AnalyzeOptions& opt) {
         {"eigenvalues", fabric.eigenvalues()},
         {"anisotropy", fabric.anisotropy()},
         {"contacts", fabric.contacts()},
-        {"without_rattlers", opt.fabric_without_rattlers}};
+        {"without_rattlers", opt.fabric.fabric_without_rattlers}};
     std::ostringstream csv;
     csv << "# packlab analyze: density of |n . e| of the contact normals n on [0, 1] (1 = isotropic), "
         << fabric.contacts() << " contacts\n";
@@ -386,10 +351,11 @@ void run_analyze(const AnalyzeOptions& opt) {
     fmt::print("analyzed {} file(s), volume fraction {:.6f}\n", opt.files.size(), mean_of(phi));
     if (do_cn)
       fmt::print("mean coordination  {:.4f} (without {} rattlers: {:.4f}; contact eps {:g})\n", cn.mean(),
-                 cn.rattler_count(), cn.mean_without_rattlers(), opt.contact_eps);
+                 cn.rattler_count(), cn.mean_without_rattlers(), opt.coordination.contact_eps);
     if (do_pores)
       fmt::print("pore size          {} points, porosity {:.4f} +- {:.4f}, band +-{:.4f} at {:g}\n",
-                 pores.counted_points(), pores.porosity(), pores.porosity_std_error(), pores.band(), opt.confidence);
+                 pores.counted_points(), pores.porosity(), pores.porosity_std_error(), pores.band(),
+                 opt.pores.confidence);
     if (do_doh) {
       const auto& doh = report["doh"];
       fmt::print("degree of heterogeneity a = {:.4f} +- {:.4f}, b = {:.4f} +- {:.4f}, R^2 = {:.5f}\n",
@@ -413,52 +379,14 @@ CLI::App* add_analyze(CLI::App& app) {
                                  "heterogeneity, fabric; several files are realizations");
   cmd->require_subcommand(0, 1);
   cmd->add_option("files", opt->files, "Packing files (any format packlab reads)");
+  auto flags = std::make_shared<OptionFlags>(cmd, io::analyze_options(*opt));
   cmd->add_option("--out", opt->out, "Output folder for the tables, plots and report.json");
-  cmd->add_option(
-         "--what", opt->what,
-         "all, cn, pores, doh, fabric or rdf (several: comma-separated; rdf with the defaults of `analyze rdf`)")
-      ->delimiter(',')
-      ->capture_default_str();
-  cmd->add_option("--contact-eps", opt->contact_eps, "Contact when distance < (1+eps)(r_i+r_j)")->capture_default_str();
-  cmd->add_option("--rattler-threshold", opt->rattler_threshold, "Rattler: fewer contacts than this")
-      ->capture_default_str();
-  cmd->add_option("--rattler-rule", opt->rattler_rule,
-                  "iterative: remove rattlers until all others keep the threshold; single_pass: flag once")
-      ->capture_default_str();
-  cmd->add_option("--points", opt->points, "Pore-size test points per file that count (0 = from --band)")
-      ->capture_default_str();
-  cmd->add_option("--band", opt->band, "Target half-width of the uniform confidence band on P(r_P > r)")
-      ->capture_default_str();
-  cmd->add_option("--confidence", opt->confidence, "Confidence level of that band")->capture_default_str();
-  cmd->add_option("--pore-definition", opt->pore_definition,
-                  "pore_space: over points outside the particles (P(0) = 1); all_points: over all points")
-      ->capture_default_str();
-  cmd->add_option("--wall-margin", opt->wall_margin,
-                  "Open axes: no test points closer than this to a wall [length unit]; < 0 = one mean diameter")
-      ->capture_default_str();
-  cmd->add_option("--r0", opt->r0, "Length unit r0 of eq. 6 [length unit]; 0 = mean particle radius")
-      ->capture_default_str();
-  cmd->add_option("--fit-range", opt->fit_range, "Fit eq. 6 over XMIN <= r/r0 <= XMAX (default 0 to P = fit-p-min)")
-      ->expected(2);
-  cmd->add_option("--fit-p-min", opt->fit_p_min, "Default fit range ends where P(r_P > r) falls to this")
-      ->capture_default_str();
-  cmd->add_option("--fit-grid", opt->fit_grid, "Equally spaced r/r0 values at which eq. 6 is fitted")
-      ->capture_default_str();
-  cmd->add_option("--fabric-bins", opt->fabric_bins, "Bins of the contact-normal distribution")->capture_default_str();
-  cmd->add_flag("--fabric-without-rattlers", opt->fabric_without_rattlers,
-                "Leave rattlers' contacts out of the fabric");
-  cmd->add_option("--box", opt->box,
-                  "Box edges LX LY LZ for files without a box (or to override it); open unless --periodic")
-      ->expected(3);
-  cmd->add_option("--origin", opt->origin, "Lower corner X Y Z of the --box (default 0 0 0)")->expected(3);
-  cmd->add_option("--periodic", opt->periodic, "Periodicity flags PX PY PZ (0 or 1) overriding the file's")
-      ->expected(3);
-  cmd->add_option("--seed", opt->seed, "Seed of the pore-size test points")->capture_default_str();
-  cmd->add_option("--threads", opt->threads, "OpenMP threads (0 = all cores)")->capture_default_str();
   cmd->add_flag("--quiet", opt->quiet, "No progress or summary output");
   cmd->add_flag("--no-plots", opt->no_plots, "Write tables and report only");
-  cmd->callback([opt, cmd] {
+  cmd->callback([opt, cmd, flags] {
     if (!cmd->get_subcommands().empty()) return;  // e.g. `packlab analyze rdf ...` did the work
+    flags->load();
+    flags->schema().validate();
     if (opt->files.empty()) fail_input("analyze: at least one packing FILE is required");
     if (opt->out.empty()) fail_input("analyze: --out DIR is required");
     run_analyze(*opt);

@@ -1,4 +1,4 @@
-// packlab analyze rdf FILE... [--partial] [--dr 0.01] [--rmax 8] [--window-radius 2.5]
+// packlab analyze rdf FILE... [--partial] [--dr 0.01] [--r-max 8] [--window-radius 2.5]
 //   [--edge auto|toroidal|ripley|minus-sampling] [--threads T] --out DIR
 // Several files are realizations of the same structure: their RDFs are averaged (computed in
 // parallel, merged in file order).
@@ -13,9 +13,11 @@
 
 #include "packlab/analyze/reference_rdf.hpp"
 #include "packlab/cli/commands.hpp"
+#include "packlab/cli/options.hpp"
 #include "packlab/cli/scrm_common.hpp"
 #include "packlab/core/error.hpp"
 #include "packlab/io/atomic_file.hpp"
+#include "packlab/io/options.hpp"
 #include "packlab/io/packing_io.hpp"
 #include "packlab/io/plot.hpp"
 #include "packlab/io/report.hpp"
@@ -128,35 +130,26 @@ nlohmann::json write_rdf_outputs(const analyze::Rdf& rdf, const std::vector<doub
 }
 
 void add_analyze_rdf(CLI::App& analyze) {
-  struct Options {
+  struct Options : io::RdfSettings {
     std::vector<std::string> files;
-    analyze::RdfParams params;
-    std::string edge = "auto";
-    bool partial = false;
     std::string out;
     bool no_plots = false;
     bool quiet = false;
+    std::unique_ptr<OptionFlags> flags;
   };
   auto opt = std::make_shared<Options>();
   auto* cmd = analyze.add_subcommand(
       "rdf", "Radial distribution function g(r), K-function, partial g_km, shell count I(r), window histograms");
   cmd->add_option("files", opt->files, "Packings (several = realizations, averaged)")->required();
-  cmd->add_flag("--partial", opt->partial, "Also the partial RDFs g_km of every pair of size classes");
-  cmd->add_option("--dr", opt->params.dr, "Bin width in units of the (largest) radius a")->capture_default_str();
-  cmd->add_option("--rmax", opt->params.r_max, "Largest distance in units of a")->capture_default_str();
-  cmd->add_option("--window-radius", opt->params.window_radius,
-                  "Histogram window radius in units of the centre particle's radius")
-      ->capture_default_str();
-  cmd->add_option("--edge", opt->edge, "Edge correction: auto, toroidal, ripley, minus-sampling")
-      ->capture_default_str();
-  cmd->add_option("--threads", opt->params.threads, "OpenMP threads (0 = all)")->capture_default_str();
+  opt->flags = std::make_unique<OptionFlags>(cmd, io::rdf_options(*opt));
   cmd->add_option("--out", opt->out, "Output folder")->required();
   cmd->add_flag("--no-plots", opt->no_plots, "Do not write PNG plots");
   cmd->add_flag("--quiet", opt->quiet, "No progress output");
   cmd->callback([opt] {
     const auto t0 = std::chrono::steady_clock::now();
-    opt->params.edge = analyze::edge_correction_from_name(opt->edge);
-    opt->params.validate();
+    opt->flags->load();
+    opt->flags->schema().validate();
+    opt->params = opt->validated();
     io::ensure_directory(opt->out);
     const std::size_t nf = opt->files.size();
     std::vector<Packing> packings(nf);
@@ -187,12 +180,8 @@ void add_analyze_rdf(CLI::App& analyze) {
       for (std::size_t k = 0; k < c.size(); ++k) cvf[k] += c[k] / static_cast<double>(nf);
     }
     nlohmann::json report = io::report_header("analyze rdf");
-    report["parameters"] = {{"files", opt->files},
-                            {"partial", opt->partial},
-                            {"dr", opt->params.dr},
-                            {"rmax", opt->params.r_max},
-                            {"window_radius", opt->params.window_radius},
-                            {"edge", opt->edge}};
+    report["parameters"] = opt->flags->schema().json();
+    report["parameters"]["files"] = opt->files;
     report["results"] = write_rdf_outputs(total, cvf, opt->out, opt->partial, !opt->no_plots);
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     report["seconds"] = seconds;

@@ -24,7 +24,8 @@ std::string config_reference() {
         option_reference(io::opal_build_options), option_reference(io::relax_options),
         option_reference(io::bond_options), option_reference(io::shear_test_options),
         option_reference(io::shear_calibration_options), option_reference(io::compression_test_options),
-        option_reference(io::compression_calibration_options)})
+        option_reference(io::compression_calibration_options), option_reference(io::analyze_options),
+        option_reference(io::rdf_options)})
     out += section;
   return out;
 }

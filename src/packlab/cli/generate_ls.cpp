@@ -1,6 +1,6 @@
 // packlab generate ls [--config FILE.toml] [--phi X] --particles N [--sizes 1,0.313 (--number-fractions ... |
 //   --volume-fractions ...)] [--radius R] [--growth-rate G] [--max-pressure P] [--events-per-block E] [--seed S]
-//   [--rdf-dr X] [--rdf-rmax X] --out DIR
+//   [--rdf-dr X] [--rdf-r-max X] --out DIR
 // Lubachevsky-Stillinger growth from random points to the volume fraction X, or to jamming
 // without --phi. Writes DIR/packing.xyz, .vtu, ls_log.csv, rdf.csv (+ rdf_partial.csv),
 // windows.csv, PNG plots and report.json.
@@ -54,7 +54,7 @@ io::ConfigSchema rdf_output_options(const std::string& command, analyze::RdfPara
   schema.number("rdf.dr", rdf.dr, "RDF bin width in units of the largest radius")
       .range(ranges::positive)
       .command_only()
-      .number("rdf.rmax", rdf.r_max, "RDF range in units of the largest radius")
+      .number("rdf.r_max", rdf.r_max, "RDF range in units of the largest radius")
       .range(ranges::positive)
       .command_only();
   return schema;

@@ -44,7 +44,7 @@ void resolve_ls_run_options(LsRunOptions& run);
 // The report's parameters of an LS start (with the normalized number fractions and the counts).
 nlohmann::json ls_parameters(const io::LsOptions& o);
 
-// The RDF of the result as the command's own settings: rdf.dr (--rdf-dr), rdf.rmax (--rdf-rmax).
+// The RDF of the result as the command's own settings: rdf.dr (--rdf-dr), rdf.r_max (--rdf-r-max).
 io::ConfigSchema rdf_output_options(const std::string& command, analyze::RdfParams& rdf);
 
 // Writes DIR/packing.xyz and DIR/packing.vtu (with a provenance comment).

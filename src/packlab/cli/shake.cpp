@@ -1,5 +1,5 @@
 // packlab shake IN [--config FILE.toml] --sweeps M [--window 0.02] [--max-trials 150] [--adaptive] [--seed S]
-//   [--rdf-dr X] [--rdf-rmax X] --out DIR
+//   [--rdf-dr X] [--rdf-r-max X] --out DIR
 // Monte-Carlo shaking of any hard-sphere packing: M global shakes. Writes DIR/packing.xyz, .vtu,
 // the RDF tables and plots of the shaken packing and report.json (with the contact value before).
 #include "packlab/generate/shake.hpp"

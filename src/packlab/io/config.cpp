@@ -404,11 +404,20 @@ nlohmann::json ConfigSchema::json() const {
 std::string ConfigSchema::markdown() const {
   std::string out = fmt::format("## `packlab {}`\n\n", command_);
   if (!summary_.empty()) out += summary_ + "\n\n";
-  if (!python_function_.empty())
+  if (!python_function_.empty()) {
+    // One function, or several classes whose keywords together are the set ("A, B").
+    std::string python;
+    for (std::size_t begin = 0; begin <= python_function_.size();) {
+      const std::size_t comma = std::min(python_function_.find(", ", begin), python_function_.size());
+      python +=
+          fmt::format("{}`packlab.{}(...)`", python.empty() ? "" : ", ", python_function_.substr(begin, comma - begin));
+      begin = comma + 2;
+    }
     out += fmt::format(
-        "Flags: `--` and the key with `-` for `.` and `_`; Python: `packlab.{}(...)` with the key "
+        "Flags: `--` and the key with `-` for `.` and `_`; Python: {} with the key "
         "with `_` for `.` as keyword (settings marked *command line* excepted).\n\n",
-        python_function_);
+        python);
+  }
   out += "| key | type | default | unit | allowed | description |\n|---|---|---|---|---|---|\n";
   for (const Field& f : fields_) {
     std::string description = f.description;

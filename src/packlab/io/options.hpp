@@ -8,6 +8,8 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
+#include "packlab/analyze/pore_size.hpp"
+#include "packlab/analyze/rdf.hpp"
 #include "packlab/core/box.hpp"
 #include "packlab/dem/engine.hpp"
 #include "packlab/dem/material.hpp"
@@ -211,5 +213,65 @@ struct CompressionCalibrationRun {
   bool full_jacobian = false;
 };
 ConfigSchema compression_calibration_options(CompressionCalibrationRun& r);
+
+// The analyses (analyze/*.hpp): each set is the keywords of its Python class and a part of
+// `packlab analyze`, whose option set is their union.
+struct CoordinationSettings {  // packlab.Coordination
+  double contact_eps = 0.01;
+  int rattler_threshold = 4;
+  std::string rattler_rule = "iterative";
+};
+void add_coordination_options(ConfigSchema& schema, CoordinationSettings& s);
+ConfigSchema coordination_options(CoordinationSettings& s);
+
+struct PoreSizeSettings {  // packlab.PoreSize
+  long points = 0;
+  double band = 0.005;
+  double confidence = 0.95;
+  std::string pore_definition = "pore_space";
+  double wall_margin = -1.0;
+  int threads = 0;
+  analyze::PoreSizeParams params() const;
+};
+void add_pore_size_options(ConfigSchema& schema, PoreSizeSettings& s);
+ConfigSchema pore_size_options(PoreSizeSettings& s);
+
+struct DohFitSettings {  // packlab.PoreSize.fit_doh
+  double r0 = 0.0;                // [m]; 0 = mean particle radius
+  std::vector<double> fit_range;  // XMIN, XMAX of r/r0; empty = 0 to where P falls to fit_p_min
+  double fit_p_min = 1e-3;
+  int fit_grid = 100;
+  analyze::DohFitOptions options() const;  // InputError for a bad fit_range
+};
+void add_doh_fit_options(ConfigSchema& schema, DohFitSettings& s);
+ConfigSchema doh_fit_options(DohFitSettings& s);
+
+struct FabricSettings {  // packlab.Fabric (with contact_eps and rattler_threshold)
+  int fabric_bins = 18;
+  bool fabric_without_rattlers = false;
+};
+void add_fabric_options(ConfigSchema& schema, FabricSettings& s);
+ConfigSchema fabric_options(CoordinationSettings& c, FabricSettings& s);
+
+// `packlab analyze`: the union, plus which analyses to run and the box of files without one.
+struct AnalyzeRun {
+  std::string what = "all";
+  CoordinationSettings coordination;
+  PoreSizeSettings pores;
+  DohFitSettings fit;
+  FabricSettings fabric;
+  std::vector<double> box, origin, periodic;
+  std::uint64_t seed = 1;
+};
+ConfigSchema analyze_options(AnalyzeRun& r);
+
+// `packlab analyze rdf` / packlab.Rdf.
+struct RdfSettings {
+  analyze::RdfParams params;
+  std::string edge = "auto";
+  bool partial = false;
+  analyze::RdfParams validated() const;  // params with the edge correction
+};
+ConfigSchema rdf_options(RdfSettings& s);
 
 }  // namespace packlab::io
