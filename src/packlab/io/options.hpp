@@ -2,6 +2,8 @@
 // parameter struct to their keys, units, ranges and documentation. The command line (flags and
 // config file), the Python module (keywords) and the generated reference read these, so a
 // command and its Python function take the same options under the same names.
+// Defined in options.cpp (generators, engine, bonds), mechanics_options.cpp (shear and
+// compression tests) and analysis_options.cpp (analyses).
 #pragma once
 
 #include <array>
