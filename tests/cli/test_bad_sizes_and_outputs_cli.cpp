@@ -61,3 +61,22 @@ TEST(Targets, AnLsTargetThatIsNotReachedIsAnError) {
   EXPECT_NE(r.output.find("phi = 0.9: not reached"), std::string::npos) << r.output;
   EXPECT_TRUE(std::filesystem::exists(dir.file("ls/packing.xyz")));  // what was reached, for inspection
 }
+
+TEST(BadPackings, TwoParticlesAtOnePointStopTheDemCommands) {
+  TempDir dir("coincident");
+  ASSERT_EQ(run_packlab("generate lattice --type sc --cells 3,3,3 --out " + dir.file("sc.xyz")).exit_code, 0);
+  // The same file with its first particle twice (the count header raised by one).
+  std::ifstream in(dir.file("sc.xyz"));
+  std::string count, comment, first, rest, line;
+  std::getline(in, count);
+  std::getline(in, comment);
+  std::getline(in, first);
+  while (std::getline(in, line)) rest += line + "\n";
+  std::ofstream(dir.file("twice.xyz")) << std::stol(count) + 1 << "\n"
+                                       << comment << "\n"
+                                       << first << "\n"
+                                       << first << "\n"
+                                       << rest;
+  expect_refused("relax " + dir.file("twice.xyz") + " " + dir.file("r.xyz") + " --quiet", "same position");
+  EXPECT_FALSE(std::filesystem::exists(dir.file("r.xyz")));
+}
