@@ -115,6 +115,7 @@ void Engine::load_state(std::istream& in) {
     fail_input("checkpoint is damaged: contact histories do not match the neighbour list");
   binary::read_vector(in, breaks_, "bond breaks");
   mark_bonded_pairs();
+  partition_work();
 }
 
 }  // namespace packlab::dem

@@ -184,12 +184,19 @@ Engine::Engine(const Packing& packing, const EngineConfig& config) : packing_(pa
       if (in.state[b] != 0) ++broken_bonds_;
     }
   }
+  // Bonds by owner (the smaller particle index), then by bond index (dem/step.cpp).
+  bond_order_.resize(bonds_.i.size());
+  bond_first_.assign(n + 1, 0);
+  for (std::size_t b = 0; b < bonds_.i.size(); ++b)
+    ++bond_first_[static_cast<std::size_t>(std::min(bonds_.i[b], bonds_.j[b])) + 1];
+  for (std::size_t k = 0; k < n; ++k) bond_first_[k + 1] += bond_first_[k];
+  {
+    std::vector<int> next(bond_first_.begin(), bond_first_.end() - 1);
+    for (std::size_t b = 0; b < bonds_.i.size(); ++b)
+      bond_order_[static_cast<std::size_t>(next[static_cast<std::size_t>(std::min(bonds_.i[b], bonds_.j[b]))]++)] =
+          static_cast<int>(b);
+  }
   threads_ = config_.threads > 0 ? config_.threads : omp_get_max_threads();
-  thread_force_.assign(threads_, {});
-  thread_torque_.assign(threads_, {});
-  thread_totals_.assign(threads_, {});
-  thread_wall_force_.assign(threads_, {});
-  thread_breaks_.assign(threads_, {});
 
   neighbors_.set_skin(config_.skin_ratio * r_max);
   neighbors_.set_reach(reach);

@@ -8,8 +8,9 @@
 // kinetic energies use the synchronous velocity v(t) = v(t - dt/2) + a(t) dt/2, so that
 // kinetic + strain energy is the conserved quantity of the undamped scheme.
 //
-// OpenMP over particles and contacts; the result is deterministic for a fixed thread count
-// (per-thread force buffers summed in thread order).
+// OpenMP over particles and contacts. The result does not depend on the thread count: every
+// particle's force is summed in the same order whatever the partition (dem/step.cpp), and
+// every sum over particles (energies, wall forces) runs over fixed-size chunks.
 #pragma once
 
 #include <array>
@@ -58,18 +59,18 @@ struct EngineConfig {
   // Parameters per particle type; a single entry applies to every type.
   std::vector<Material> types{Material{}};
   StiffnessRule stiffness_rule = StiffnessRule::particle;
-  double time_step = 0.0;          // [s]; 0 = time_step_safety * min_i sqrt(m_i / k_i)
-  double time_step_safety = 0.2;   // [-]
+  double time_step = 0.0;         // [s]; 0 = time_step_safety * min_i sqrt(m_i / k_i)
+  double time_step_safety = 0.2;  // [-]
   TimeStepRule time_step_rule = TimeStepRule::global;
   // contacts rule: upper bound [s]; 0 = safety * max over particles of sqrt(m_i / k_i)
   // (the step the heaviest particle needs), used while nothing touches.
   double max_time_step = 0.0;
-  double skin_ratio = 0.2;         // Verlet skin as a fraction of the largest radius [-]
+  double skin_ratio = 0.2;  // Verlet skin as a fraction of the largest radius [-]
   // Bonds of the packing's bond list: the bond law and its parameters per bond material.
   // Required when the packing has intact bonds. E.g.
   //   config.bond_materials = BondMaterialList<ElasticBond>{{.youngs_modulus = 6.5e9}};
   BondMaterials bond_materials;
-  int threads = 0;                 // 0 = OpenMP default
+  int threads = 0;  // 0 = OpenMP default
 };
 
 // The bond law that `materials` holds parameters for ("contact", "elastic").
@@ -79,9 +80,9 @@ std::string bond_law_name(const BondMaterials& materials);
 // (the wall is taken to be of the touching particle's material, infinitely large and heavy).
 // It moves with a prescribed velocity; the engine records the force the particles exert on it.
 struct Wall {
-  Vec3 point;              // a point on the plane [m]
-  Vec3 normal{0, 0, 1};    // unit normal, pointing into the particles' side
-  Vec3 velocity{};         // [m/s]
+  Vec3 point;            // a point on the plane [m]
+  Vec3 normal{0, 0, 1};  // unit normal, pointing into the particles' side
+  Vec3 velocity{};       // [m/s]
 };
 
 // Names of the registered contact and bond laws (the user-facing strings).
@@ -99,15 +100,15 @@ struct BondBreak {
 
 struct Diagnostics {
   long step = 0;
-  double time = 0.0;                   // [s]
-  double kinetic_energy = 0.0;         // translational + rotational [J]
-  double strain_energy = 0.0;          // elastic energy in contacts [J]
-  double unbalanced_force_ratio = 0.0; // mean |F_i| over free particles / mean |F_c| over contacts
-  double mean_coordination = 0.0;      // 2 contacts / particles
-  std::size_t contacts = 0;            // touching pairs (overlap > 0)
-  double max_overlap_ratio = 0.0;      // max overlap / (r_i + r_j)
+  double time = 0.0;                    // [s]
+  double kinetic_energy = 0.0;          // translational + rotational [J]
+  double strain_energy = 0.0;           // elastic energy in contacts [J]
+  double unbalanced_force_ratio = 0.0;  // mean |F_i| over free particles / mean |F_c| over contacts
+  double mean_coordination = 0.0;       // 2 contacts / particles
+  std::size_t contacts = 0;             // touching pairs (overlap > 0)
+  double max_overlap_ratio = 0.0;       // max overlap / (r_i + r_j)
   std::size_t intact_bonds = 0;
-  std::size_t broken_bonds = 0;        // broken so far (including those broken in the file)
+  std::size_t broken_bonds = 0;  // broken so far (including those broken in the file)
 };
 
 // Every force acting between bodies at the current state, as plain arrays (packing order).
@@ -135,9 +136,9 @@ template <class Law>
 struct ContactModel {
   Law law;
   int type_count = 1;
-  std::vector<typename Law::Params> pair_params;   // [type_i * type_count + type_j]
-  std::vector<typename Law::History> history;      // parallel to the neighbour list
-  std::vector<typename Law::History> wall_history; // [particle * walls + wall]
+  std::vector<typename Law::Params> pair_params;    // [type_i * type_count + type_j]
+  std::vector<typename Law::History> history;       // parallel to the neighbour list
+  std::vector<typename Law::History> wall_history;  // [particle * walls + wall]
   const typename Law::Params& params(int type_i, int type_j) const { return pair_params[type_i * type_count + type_j]; }
 };
 
@@ -155,6 +156,9 @@ struct BondModel {
 };
 
 using BondModels = BondLaws::variant<BondModel>;
+
+template <class Law>
+struct PairBlock;  // dem/step.cpp
 
 class Engine {
  public:
@@ -194,7 +198,7 @@ class Engine {
   // Axial strain (L - L0) / L0 of every bond (packing's bond order; positive = stretched);
   // NaN for bonds that have failed (relaxing or removed).
   std::vector<double> bond_strains() const;
-  // Every bond failure so far, in the order they happened (thread order within a step).
+  // Every bond failure so far, in the order they happened (by bond index within a step).
   const std::vector<BondBreak>& bond_breaks() const { return breaks_; }
 
   // The forces of every touching pair, intact bond and wall contact at the current state
@@ -236,7 +240,7 @@ class Engine {
     // contacts rule: max over touching pairs of k / m_lighter; stiffness_sum rule: max over
     // particles of sum_c k_c / m_i.
     double max_stiffness_over_mass = 0.0;
-    std::size_t bond_breaks = 0;           // bonds that failed this step
+    std::size_t bond_breaks = 0;  // bonds that failed this step
   };
   // Bonds in the engine's particle order; `image` is relative to the input frame (see wraps_).
   struct BondList {
@@ -244,8 +248,28 @@ class Engine {
     std::vector<std::array<int, 3>> image;
     std::vector<int> material;
     std::vector<double> rest_length;
-    std::vector<int> state;                      // 0 intact, 1 broken
-    std::vector<int> pair;                       // index in the neighbour list, or -1
+    std::vector<int> state;  // 0 intact, 1 broken
+    std::vector<int> pair;   // index in the neighbour list, or -1
+  };
+  // What one pair or bond contributes to its two particles (zero when it does not act).
+  struct Contribution {
+    int particle_j = 0;
+    Vec3 force_on_j{}, torque_i{}, torque_j{};
+    double stiffness = 0.0;
+    double energy = 0.0, force_norm = 0.0;  // measured steps only
+  };
+  // One thread's share: a contiguous range of particles with the pairs and bonds they own.
+  // The pairs and bonds that reach a particle of a later range are evaluated first and kept,
+  // so that every particle receives its contributions in the order a single thread gives.
+  struct ThreadWork {
+    int particle_begin = 0, particle_end = 0;
+    std::vector<int> crossing_pairs;  // listed pairs, ascending
+    std::vector<Contribution> crossing_pair_results;
+    std::vector<std::uint8_t> crossing_pair_acts;  // 1 if the pair acted (touched)
+    std::vector<int> crossing_bonds;               // positions in bond_order_, ascending
+    std::vector<Contribution> crossing_bond_results;
+    std::vector<BondBreak> breaks;  // this step
+    Totals totals;
   };
   template <bool Measure>
   Totals step_impl();
@@ -255,14 +279,20 @@ class Engine {
   void integrate(Totals& totals);
   void refresh_neighbors();
   void mark_bonded_pairs();
-  // `stiffness` (nullptr unless the stiffness_sum rule is on) accumulates each particle's
-  // contact stiffnesses.
+  // Splits particles, pairs and bonds among the threads (after every neighbour rebuild).
+  void partition_work();
+  template <class Law, bool OneType, bool Indirect>
+  void gather_pairs(ContactModel<Law>& model, const int* pairs, int start, int count, int skip_from,
+                    const std::uint8_t* crossing_acts, int& crossing_seen, PairBlock<Law>& block);
+  template <class Law, bool OneType, bool Measure>
+  void contact_block(ContactModel<Law>& model, PairBlock<Law>& block);
   template <class BondLaw, bool Measure>
-  void bond_forces(BondModel<BondLaw>& model, int thread, Vec3* force, Vec3* torque, double* stiffness,
-                   Totals& local);
+  void bond_contribution(BondModel<BondLaw>& model, std::size_t b, Contribution& out, ThreadWork& work);
+  // Walls over fixed chunks of particles (inside the parallel region); returns the largest
+  // k / m of the wall contacts.
   template <class Law, bool Measure>
-  void wall_forces(ContactModel<Law>& model, int thread, Vec3* force, Vec3* torque, double* stiffness,
-                   Totals& local);
+  double wall_forces(ContactModel<Law>& model, double* stiffness, double* measure_energy, double* measure_force,
+                     std::size_t* wall_contacts);
   std::array<int, 3> bond_image_now(std::size_t b) const;
   void update_mass(std::size_t k);
   double heaviest_particle_time_step() const;
@@ -284,24 +314,22 @@ class Engine {
   std::vector<std::uint8_t> pair_bonded_;  // per neighbour pair: the contact law is off
   std::size_t broken_bonds_ = 0;
   std::vector<BondBreak> breaks_;
-  std::vector<std::vector<BondBreak>> thread_breaks_;  // per thread, this step
   std::vector<Wall> walls_;
-  std::vector<Vec3> wall_force_;                        // per wall, last step
-  std::vector<std::vector<Vec3>> thread_wall_force_;    // per thread, per wall
+  std::vector<Vec3> wall_force_;  // per wall, last step
   NeighborList neighbors_;
+  std::vector<int> pair_owner_;  // per listed pair: its particle i
+  // Bonds by the smaller of their two particle indices (their owner), then by bond index:
+  // bond_order_[bond_first_[k] .. bond_first_[k + 1]) are the bonds owned by particle k.
+  std::vector<int> bond_order_, bond_first_;
   ContactModels model_;
   BondModels bond_model_;
-  std::vector<std::vector<Vec3>> thread_force_, thread_torque_;
-  std::vector<std::vector<double>> thread_stiffness_;  // stiffness_sum rule: per thread, per particle
-  // Several threads, pair contacts only: a force on a particle of a later thread's range.
-  struct Ghost {
-    int particle;
-    Vec3 force, torque;
-    double stiffness;
-  };
-  std::vector<std::vector<Ghost>> thread_ghosts_;
-  std::vector<double> shared_stiffness_;   // stiffness_sum rule, owned mode: per particle
-  std::vector<Totals> thread_totals_;
+  std::vector<ThreadWork> work_;       // per thread (dem/step.cpp)
+  std::vector<double> stiffness_sum_;  // stiffness_sum rule: per particle [N/m]
+  // Measured steps: per particle, the strain energy and contact force magnitudes of the
+  // contacts it owns, summed in particle order afterwards (the same sums at any thread count).
+  std::vector<double> measure_energy_, measure_force_;
+  std::vector<double> chunk_sums_;      // per fixed-size chunk of particles
+  std::vector<Vec3> wall_chunk_force_;  // [chunk * walls + wall]
   int threads_ = 1;
   double dt_ = 0.0;
   double time_step_cap_ = 0.0;  // contacts rule: max_time_step or the heaviest particle's step

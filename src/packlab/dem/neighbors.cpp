@@ -21,6 +21,7 @@ void Engine::refresh_neighbors() {
       },
       model_);
   mark_bonded_pairs();
+  partition_work();
 }
 
 std::array<int, 3> Engine::bond_image_now(std::size_t b) const {

@@ -1,97 +1,282 @@
-// One time step: the threaded loop over the listed pairs (the contact law), the bonds (the
-// bond law) and the walls, then the leap-frog integration with local damping and the
-// refreshed time step. Everything in the loop is templated on the laws (dem/contact/,
-// dem/bond/), so each law gets its own inlined loop and adding one touches nothing here.
+// One time step: the contact law over the listed pairs, the bond law over the bonds and the
+// walls, then the leap-frog integration with local damping and the refreshed time step.
+// Everything in the loop is templated on the laws (dem/contact/, dem/bond/), so each law gets
+// its own inlined loop and adding one touches nothing here.
+//
+// Threads and the order of sums. Each thread owns a contiguous range of particles (sorted
+// along a space-filling curve) with the listed pairs and bonds whose first particle is in it
+// (partition_work). A pair (i, j) has j >= i, so a particle receives contributions only from
+// pairs and bonds owned by itself or by earlier ranges. The few that reach a particle of a
+// later range ("crossing") are evaluated first and kept; after one barrier each thread adds
+// the crossing contributions of earlier threads to its particles and then its own, in pair
+// order. Every particle's force is then the same sum in the same order as with one thread:
+// the result does not depend on the thread count, no thread writes another's particles, and
+// there is no whole-size buffer to clear or reduce.
+//
+// The contact law runs over blocks of 64 listed pairs into per-component arrays (PairBlock):
+// no branch on whether a pair touches (its result is masked), so the loop vectorizes; the
+// forces are then added to the particles in a short scalar loop.
 #include <omp.h>
 
 #include <algorithm>
 #include <array>
+#include <climits>
 #include <cmath>
+#include <limits>
 
 #include "packlab/dem/engine.hpp"
 #include "packlab/dem/local_damping.hpp"
 
 namespace packlab::dem {
 
-template <class Law, bool Measure>
-void Engine::wall_forces(ContactModel<Law>& model, int thread, Vec3* force, Vec3* torque, double* stiffness,
-                         Totals& local) {
-  const std::size_t n = particles_.size(), walls = walls_.size();
-  const std::size_t begin = n * thread / threads_, end = n * (thread + 1) / threads_;
-  auto& wall_force = thread_wall_force_[thread];
-  wall_force.assign(walls, Vec3{});
-  const auto& P = particles_;
-  for (std::size_t k = begin; k < end; ++k) {
-    for (std::size_t m = 0; m < walls; ++m) {
-      const Wall& wall = walls_[m];
-      const double distance = dot(P.position[k] - wall.point, wall.normal);
-      auto& history = model.wall_history[k * walls + m];
-      const int t = P.type[k];
-      const auto& params = model.params(t, t);
-      if (distance >= P.radius[k] + Law::reach(params)) {
-        history = typename Law::History{};
-        continue;
-      }
-      const ContactGeometry g = wall_geometry(k, wall, distance);
-      const PairForce f = Law::evaluate(g, params, history);
-      force[k] -= f.force_on_j;
-      torque[k] += f.torque_i;
-      wall_force[m] += f.force_on_j;
-      local.max_stiffness_over_mass = std::max(local.max_stiffness_over_mass, f.stiffness * P.inverse_mass[k]);
-      if (stiffness) stiffness[k] += f.stiffness;
-      if constexpr (Measure) {
-        local.contacts += g.overlap > 0.0;
-        local.contact_force_sum += norm(f.force_on_j);
-        local.strain_energy += f.energy;
-      }
+namespace {
+
+// Particles per chunk of the sums over all particles (energies, wall forces): fixed, so the
+// sums are the same at any thread count.
+constexpr int chunk_size = 4096;
+
+int chunk_count(int n) { return (n + chunk_size - 1) / chunk_size; }
+
+}  // namespace
+
+void Engine::partition_work() {
+  const int n = static_cast<int>(particles_.size());
+  const int T = threads_;
+  const auto& first = neighbors_.first_pairs();
+  const auto& partner = neighbors_.partner();
+  pair_owner_.resize(partner.size());
+  for (int i = 0; i < n; ++i) std::fill(pair_owner_.begin() + first[i], pair_owner_.begin() + first[i + 1], i);
+  // Ranges holding about equal work: a listed pair counts 1, a bond 2 (its law does more).
+  auto work_before = [&](int i) { return static_cast<long>(first[i]) + 2L * bond_first_[i]; };
+  const long total = work_before(n);
+  work_.resize(static_cast<std::size_t>(T));
+  int i = 0;
+  for (int t = 0; t < T; ++t) {
+    ThreadWork& w = work_[static_cast<std::size_t>(t)];
+    w.particle_begin = i;
+    const long target = total * (t + 1) / T;
+    if (t + 1 == T)
+      i = n;
+    else
+      while (i < n && work_before(i) < target) ++i;
+    w.particle_end = i;
+    w.crossing_pairs.clear();
+    for (int p = first[w.particle_begin]; p < first[w.particle_end]; ++p)
+      if (partner[p] >= w.particle_end) w.crossing_pairs.push_back(p);
+    w.crossing_pair_results.resize(w.crossing_pairs.size());
+    w.crossing_pair_acts.resize(w.crossing_pairs.size());
+    w.crossing_bonds.clear();
+    for (int q = bond_first_[w.particle_begin]; q < bond_first_[w.particle_end]; ++q) {
+      const auto b = static_cast<std::size_t>(bond_order_[q]);
+      if (std::max(bonds_.i[b], bonds_.j[b]) >= w.particle_end) w.crossing_bonds.push_back(q);
     }
+    w.crossing_bond_results.resize(w.crossing_bonds.size());
   }
 }
 
+// The listed pairs of one block that act (touch, or are within the law's reach, and are not
+// held by a bond), compacted, with what the law reads about them in one array per quantity,
+// and the law's results in the same form. Filled by gather_pairs, evaluated by contact_block
+// in a loop that vectorizes (contiguous loads, no branch), added to the particles in order.
+template <class Law>
+struct PairBlock {
+  static constexpr int capacity = 30;
+  int count = 0;
+  int pair[capacity], owner[capacity], other[capacity];
+  std::uint8_t evaluated_before[capacity];  // crossing pair: use the kept result
+  std::uint8_t keep_history[capacity];      // per listed pair of the block
+  double dx[capacity], dy[capacity], dz[capacity], distance2[capacity];
+  double radius_i[capacity], radius_j[capacity], inverse_mass_i[capacity], inverse_mass_j[capacity];
+  double vix[capacity], viy[capacity], viz[capacity], vjx[capacity], vjy[capacity], vjz[capacity];
+  double wix[capacity], wiy[capacity], wiz[capacity], wjx[capacity], wjy[capacity], wjz[capacity];
+  typename Law::History history[capacity];
+  typename Law::Params params[capacity];
+  double force_x[capacity], force_y[capacity], force_z[capacity];
+  double torque_i_x[capacity], torque_i_y[capacity], torque_i_z[capacity];
+  double torque_j_x[capacity], torque_j_y[capacity], torque_j_z[capacity];
+  double stiffness[capacity], stiffness_over_mass[capacity];
+  double energy[capacity], force_norm[capacity], overlap[capacity];
+};
+
+// Gathers the acting pairs among `count` listed pairs (pairs[start + k] if Indirect, else
+// start + k) into the block, in list order, without a branch on whether a pair acts (the
+// entry is written and kept only if it does). A pair out of range ends its history. Pairs
+// whose j >= skip_from were evaluated before (crossing pairs): their history is left alone
+// and they are listed, flagged, only if they acted, so that their kept result is added at
+// their place in the order.
+template <class Law, bool OneType, bool Indirect>
+void Engine::gather_pairs(ContactModel<Law>& model, const int* pairs, int start, int count, int skip_from,
+                          const std::uint8_t* crossing_acts, int& crossing_seen, PairBlock<Law>& block) {
+  const Vec3* __restrict x = particles_.position.data();
+  const Vec3* __restrict v = particles_.velocity.data();
+  const Vec3* __restrict w = particles_.angular_velocity.data();
+  const double* __restrict rad = particles_.radius.data();
+  const int* __restrict type = particles_.type.data();
+  const double* __restrict inverse_mass = particles_.inverse_mass.data();
+  const int* __restrict owner = pair_owner_.data();
+  const int* __restrict partner = neighbors_.partner().data();
+  const std::uint8_t* __restrict image = neighbors_.image().data();
+  const std::uint8_t* __restrict bonded = pair_bonded_.data();
+  const Vec3* __restrict offsets = &neighbors_.image_offset(0);
+  auto* __restrict history = model.history.data();
+  const auto* __restrict params = model.pair_params.data();
+  const int type_count = model.type_count;
+  using History = typename Law::History;
+  // Pass 1, over the listed pairs: which act, compacted (written at m, kept by m += acts).
+  int m = 0;
+  for (int k = 0; k < count; ++k) {
+    const int p = Indirect ? pairs[start + k] : start + k;
+    const int i = owner[p], j = partner[p];
+    const Vec3 d = x[j] + offsets[image[p]] - x[i];
+    const double dist2 = norm2(d);
+    const double ri = rad[i], rj = rad[j];
+    const double reach = OneType ? Law::reach(params[0]) : Law::reach(params[type[i] * type_count + type[j]]);
+    const double cutoff = ri + rj + reach;  // r_i + r_j for laws acting on overlap only
+    const bool before = j >= skip_from;
+    // A crossing pair's flag is read only for crossing pairs (crossing_seen counts them).
+    const bool acted_before = before && crossing_acts[before ? crossing_seen : 0];
+    crossing_seen += before;
+    const bool acts = (dist2 < cutoff * cutoff) & (bonded[p] == 0) & !before;
+    block.pair[m] = p;
+    block.owner[m] = i;
+    block.other[m] = j;
+    block.evaluated_before[m] = before;
+    block.dx[m] = d.x;
+    block.dy[m] = d.y;
+    block.dz[m] = d.z;
+    block.distance2[m] = dist2;
+    block.radius_i[m] = ri;
+    block.radius_j[m] = rj;
+    block.keep_history[k] = before | acts;
+    m += before ? acted_before : acts;
+  }
+  block.count = m;
+  // A pair out of range ends its history (crossing ones keep theirs); the acting ones are
+  // given theirs after the evaluation.
+  if constexpr (!Indirect) {
+    auto* __restrict h = history + start;
+    for (int k = 0; k < count; ++k) h[k] = block.keep_history[k] ? h[k] : History{};
+  } else {
+    for (int k = 0; k < count; ++k)
+      if (!block.keep_history[k]) history[pairs[start + k]] = History{};
+  }
+  // Pass 2, over the acting pairs: the rest of what the law reads.
+  for (int c = 0; c < m; ++c) {
+    const int i = block.owner[c], j = block.other[c];
+    block.inverse_mass_i[c] = inverse_mass[i];
+    block.inverse_mass_j[c] = inverse_mass[j];
+    block.vix[c] = v[i].x;
+    block.viy[c] = v[i].y;
+    block.viz[c] = v[i].z;
+    block.vjx[c] = v[j].x;
+    block.vjy[c] = v[j].y;
+    block.vjz[c] = v[j].z;
+    block.wix[c] = w[i].x;
+    block.wiy[c] = w[i].y;
+    block.wiz[c] = w[i].z;
+    block.wjx[c] = w[j].x;
+    block.wjy[c] = w[j].y;
+    block.wjz[c] = w[j].z;
+    block.history[c] = history[block.pair[c]];
+    if constexpr (!OneType) block.params[c] = params[type[i] * type_count + type[j]];
+  }
+  if constexpr (OneType) block.params[0] = params[0];
+}
+
+// The contact law over the gathered pairs: contiguous loads, the law inlined, selects instead
+// of branches, so the loop vectorizes. Writes the new histories back.
+template <class Law, bool OneType, bool Measure>
+void Engine::contact_block(ContactModel<Law>& model, PairBlock<Law>& block) {
+  const int count = block.count;
+  const double dt = dt_;
+  auto* __restrict history = model.history.data();
+  typename Law::History updated[PairBlock<Law>::capacity];
+#pragma GCC ivdep
+  for (int c = 0; c < count; ++c) {
+    const typename Law::Params pair_params = block.params[OneType ? 0 : c];
+    const double dist = std::sqrt(block.distance2[c]);
+    const double ri = block.radius_i[c], rj = block.radius_j[c];
+    ContactGeometry g;
+    g.normal = Vec3{block.dx[c], block.dy[c], block.dz[c]} * (1.0 / dist);
+    g.overlap = ri + rj - dist;
+    g.branch_i = ri - 0.5 * g.overlap;
+    g.branch_j = rj - 0.5 * g.overlap;
+    const Vec3 wi{block.wix[c], block.wiy[c], block.wiz[c]}, wj{block.wjx[c], block.wjy[c], block.wjz[c]};
+    g.relative_velocity = Vec3{block.vjx[c], block.vjy[c], block.vjz[c]} -
+                          Vec3{block.vix[c], block.viy[c], block.viz[c]} -
+                          cross(g.branch_j * wj + g.branch_i * wi, g.normal);
+    g.mean_spin = 0.5 * (wi + wj);
+    g.dt = dt;
+    g.radius_i = ri;
+    g.radius_j = rj;
+    // Two fixed particles: 0, not infinity, so no NaN reaches them.
+    const double inverse_sum = block.inverse_mass_i[c] + block.inverse_mass_j[c];
+    g.effective_mass = 1.0 / std::max(inverse_sum, std::numeric_limits<double>::min()) * (inverse_sum > 0.0);
+    g.spin_i = wi;
+    g.spin_j = wj;
+    typename Law::History h = block.history[c];
+    const PairForce f = Law::evaluate(g, pair_params, h);
+    updated[c] = h;
+    block.force_x[c] = f.force_on_j.x;
+    block.force_y[c] = f.force_on_j.y;
+    block.force_z[c] = f.force_on_j.z;
+    block.torque_i_x[c] = f.torque_i.x;
+    block.torque_i_y[c] = f.torque_i.y;
+    block.torque_i_z[c] = f.torque_i.z;
+    block.torque_j_x[c] = f.torque_j.x;
+    block.torque_j_y[c] = f.torque_j.y;
+    block.torque_j_z[c] = f.torque_j.z;
+    block.stiffness[c] = f.stiffness;
+    block.stiffness_over_mass[c] = f.stiffness * std::max(block.inverse_mass_i[c], block.inverse_mass_j[c]);
+    if constexpr (Measure) {
+      block.energy[c] = f.energy;
+      block.force_norm[c] = norm(f.force_on_j);
+      block.overlap[c] = g.overlap;
+    }
+  }
+  for (int c = 0; c < count; ++c)
+    if (!block.evaluated_before[c]) history[block.pair[c]] = updated[c];
+}
+
 template <class BondLaw, bool Measure>
-void Engine::bond_forces(BondModel<BondLaw>& model, int thread, Vec3* force, Vec3* torque, double* stiffness,
-                         Totals& local) {
-  auto& histories = model.history;
-  const std::size_t nb = bonds_.i.size();
-  const std::size_t begin = nb * thread / threads_, end = nb * (thread + 1) / threads_;
+void Engine::bond_contribution(BondModel<BondLaw>& model, std::size_t b, Contribution& out, ThreadWork& work) {
+  out = Contribution{};
+  const int i = bonds_.i[b], j = bonds_.j[b];
+  // Oriented from the bond's owner (the smaller index) to the other particle.
+  const bool owner_is_i = i <= j;
+  out.particle_j = owner_is_i ? j : i;
+  if (bonds_.state[b] != 0) return;
   const auto& P = particles_;
   const Box& box = packing_.box;
-  for (std::size_t b = begin; b < end; ++b) {
-    if (bonds_.state[b] != 0) continue;
-    const int i = bonds_.i[b], j = bonds_.j[b];
-    const Vec3 d = P.position[j] + box.shift_vector(bond_image_now(b)) - P.position[i];
-    const double dist = norm(d);
-    if (!(dist > 0.0)) continue;  // coincident centres: no direction to act along
-    ContactGeometry g = pair_geometry(static_cast<std::size_t>(i), static_cast<std::size_t>(j), d, dist);
-    g.rest_length = bonds_.rest_length[b];
-    const auto& params = model.params(bonds_.material[b]);
-    const BondForce f = BondLaw::evaluate(g, params, histories[b]);
-    if (f.failed) {
-      ++local.bond_breaks;
-      thread_breaks_[thread].push_back(BondBreak{b, time_, box.wrap(P.position[i] + 0.5 * d)});
-    }
-    if (f.broken) {
-      bonds_.state[b] = 1;
-      // The pair interacts through the contact law from the next step on. Only this thread
-      // touches bond b and its pair.
-      if (bonds_.pair[b] >= 0) pair_bonded_[static_cast<std::size_t>(bonds_.pair[b])] = 0;
-      continue;
-    }
-    force[i] -= f.force_on_j;
-    force[j] += f.force_on_j;
-    torque[i] += f.torque_i;
-    torque[j] += f.torque_j;
-    const double k = BondLaw::stiffness(params, P.radius[i], P.radius[j], bonds_.rest_length[b]);
-    local.max_stiffness_over_mass = std::max(local.max_stiffness_over_mass, k * std::max(P.inverse_mass[i], P.inverse_mass[j]));
-    if (stiffness) {
-      stiffness[i] += k;
-      stiffness[j] += k;
-    }
-    if constexpr (Measure) {
-      local.contact_force_sum += norm(f.force_on_j);
-      ++local.contacts;
-      local.strain_energy += f.energy;
-    }
+  const Vec3 d = P.position[j] + box.shift_vector(bond_image_now(b)) - P.position[i];
+  const double dist = norm(d);
+  if (!(dist > 0.0)) return;  // coincident centres: no direction to act along
+  ContactGeometry g = pair_geometry(static_cast<std::size_t>(i), static_cast<std::size_t>(j), d, dist);
+  g.rest_length = bonds_.rest_length[b];
+  const auto& params = model.params(bonds_.material[b]);
+  const BondForce f = BondLaw::evaluate(g, params, model.history[b]);
+  if (f.failed) {
+    ++work.totals.bond_breaks;
+    work.breaks.push_back(BondBreak{b, time_, box.wrap(P.position[i] + 0.5 * d)});
+  }
+  if (f.broken) {
+    bonds_.state[b] = 1;
+    // The pair interacts through the contact law from the next step on. The pair belongs to
+    // the bond's owner, so only this thread touches it, and it was evaluated before.
+    if (bonds_.pair[b] >= 0) pair_bonded_[static_cast<std::size_t>(bonds_.pair[b])] = 0;
+    return;
+  }
+  const double k = BondLaw::stiffness(params, P.radius[i], P.radius[j], bonds_.rest_length[b]);
+  work.totals.max_stiffness_over_mass =
+      std::max(work.totals.max_stiffness_over_mass, k * std::max(P.inverse_mass[i], P.inverse_mass[j]));
+  out.force_on_j = owner_is_i ? f.force_on_j : -f.force_on_j;
+  out.torque_i = owner_is_i ? f.torque_i : f.torque_j;
+  out.torque_j = owner_is_i ? f.torque_j : f.torque_i;
+  out.stiffness = k;
+  if constexpr (Measure) {
+    ++work.totals.contacts;
+    out.energy = f.energy;
+    out.force_norm = norm(f.force_on_j);
   }
 }
 
@@ -99,211 +284,270 @@ template <class Law, bool Measure, bool SumRule>
 void Engine::pair_forces(ContactModel<Law>& model, Totals& totals) {
   const int n = static_cast<int>(particles_.size());
   const int T = threads_;
-  const Vec3* __restrict x = particles_.position.data();
-  const Vec3* __restrict v = particles_.velocity.data();
-  const Vec3* __restrict w = particles_.angular_velocity.data();
-  const double* __restrict rad = particles_.radius.data();
-  const int* __restrict type = particles_.type.data();
+  const bool any_bonds = !bonds_.i.empty();
+  const bool one_type = model.type_count == 1;
   const int* __restrict first = neighbors_.first_pairs().data();
-  const int* __restrict partner = neighbors_.partner().data();
-  const std::uint8_t* __restrict image = neighbors_.image().data();
-  const int pair_total = first[n];
-  const double dt = dt_;
-  const int type_count = model.type_count;
-  const auto* __restrict params = model.pair_params.data();
-  const double* __restrict inverse_mass = particles_.inverse_mass.data();
-  auto* __restrict history = model.history.data();
-  const std::uint8_t* __restrict bonded = pair_bonded_.data();
-  const bool any_bonded = !bonds_.i.empty();
-  constexpr bool sum_rule = SumRule;
-  if constexpr (sum_rule) thread_stiffness_.resize(static_cast<std::size_t>(T));
-  // Several threads and only pair contacts: each thread owns its range of particles and writes
-  // their forces directly; a contribution to a particle of a later thread's range goes to a
-  // short "ghost" list, added by its owner after the barrier. (With bonds or walls, whose loops
-  // are split differently, each thread sums into a whole-size buffer instead; zeroing and
-  // summing those buffers costs as much as a sparse packing's contacts.)
-  const bool owned = T > 1 && !any_bonded && walls_.empty();
-  if (owned) {
-    thread_ghosts_.resize(static_cast<std::size_t>(T));
-    if constexpr (sum_rule) shared_stiffness_.resize(static_cast<std::size_t>(n));
+  Vec3* __restrict force = particles_.force.data();
+  Vec3* __restrict torque = particles_.torque.data();
+  if constexpr (SumRule) stiffness_sum_.resize(static_cast<std::size_t>(n));
+  double* __restrict stiffness = SumRule ? stiffness_sum_.data() : nullptr;
+  if constexpr (Measure) {
+    measure_energy_.assign(static_cast<std::size_t>(n), 0.0);
+    measure_force_.assign(static_cast<std::size_t>(n), 0.0);
   }
-  std::array<Vec3, 27> offsets;  // local copy: the force stores below cannot alias it
-  for (int c = 0; c < 27; ++c) offsets[c] = neighbors_.image_offset(c);
+  double* __restrict measure_energy = Measure ? measure_energy_.data() : nullptr;
+  double* __restrict measure_force = Measure ? measure_force_.data() : nullptr;
+  constexpr int capacity = PairBlock<Law>::capacity;
+  if (!walls_.empty()) wall_chunk_force_.resize(static_cast<std::size_t>(chunk_count(n)) * walls_.size());
+
+  // What a pair or bond gives its owner and its other particle.
+  auto add_to_owner = [&](int i, const Contribution& c) {
+    force[i] -= c.force_on_j;
+    torque[i] += c.torque_i;
+    if constexpr (SumRule) stiffness[i] += c.stiffness;
+    if constexpr (Measure) {
+      measure_energy[i] += c.energy;
+      measure_force[i] += c.force_norm;
+    }
+  };
+  auto add_to_other = [&](const Contribution& c) {
+    force[c.particle_j] += c.force_on_j;
+    torque[c.particle_j] += c.torque_j;
+    if constexpr (SumRule) stiffness[c.particle_j] += c.stiffness;
+  };
+  // Measured steps: contact counts and the largest overlap ratio of a block's acting pairs.
+  auto measure_block = [&](const PairBlock<Law>& block, Totals& local) {
+    if constexpr (Measure)
+      for (int c = 0; c < block.count; ++c) {
+        if (block.evaluated_before[c]) continue;
+        local.contacts += block.overlap[c] > 0.0;
+        local.max_overlap_ratio =
+            std::max(local.max_overlap_ratio, block.overlap[c] / (block.radius_i[c] + block.radius_j[c]));
+      }
+  };
 
 #pragma omp parallel num_threads(T)
   {
     const int t = omp_get_thread_num();
-    // Contiguous ranges of particles holding about equal numbers of pairs; each particle's
-    // pairs belong to one thread, so its own force is summed in registers.
-    auto first_particle = [&](int thread) {
-      return static_cast<int>(std::lower_bound(first, first + n, static_cast<int>(static_cast<long>(pair_total) *
-                                                                                   thread / T)) -
-                              first);
-    };
-    const int i_begin = first_particle(t);
-    const int i_end = t + 1 == T ? n : first_particle(t + 1);
-    Vec3* __restrict force;
-    Vec3* __restrict torque;
-    double* __restrict stiffness = nullptr;
-    if (T == 1 || owned) {
-      force = particles_.force.data();
-      torque = particles_.torque.data();
-      // Owned: zero only this thread's range (no other thread writes it before the barrier).
-      const int zero_begin = owned ? i_begin : 0, zero_end = owned ? i_end : n;
-      std::fill(force + zero_begin, force + zero_end, Vec3{});
-      std::fill(torque + zero_begin, torque + zero_end, Vec3{});
-      if constexpr (sum_rule) {
-        std::vector<double>& buffer = owned ? shared_stiffness_ : thread_stiffness_[t];
-        buffer.resize(static_cast<std::size_t>(n));
-        stiffness = buffer.data();
-        std::fill(stiffness + zero_begin, stiffness + zero_end, 0.0);
+    ThreadWork& work = work_[static_cast<std::size_t>(t)];
+    work.totals = Totals{};
+    work.breaks.clear();
+    Totals& local = work.totals;
+    PairBlock<Law> block;
+    const std::uint8_t no_crossing = 0;
+    const std::uint8_t* crossing_acts = work.crossing_pair_acts.empty() ? &no_crossing : work.crossing_pair_acts.data();
+    int crossing_seen = 0;
+    // Gathers and evaluates one block of listed pairs.
+    auto run_block = [&]<bool Indirect>(const int* list, int start, int count, int skip_from) {
+      if (one_type) {
+        gather_pairs<Law, true, Indirect>(model, list, start, count, skip_from, crossing_acts, crossing_seen, block);
+        contact_block<Law, true, Measure>(model, block);
+      } else {
+        gather_pairs<Law, false, Indirect>(model, list, start, count, skip_from, crossing_acts, crossing_seen, block);
+        contact_block<Law, false, Measure>(model, block);
       }
-      if (owned) thread_ghosts_[t].clear();
-    } else {
-      thread_force_[t].resize(n);
-      thread_torque_[t].resize(n);
-      force = thread_force_[t].data();
-      torque = thread_torque_[t].data();
-      std::fill(force, force + n, Vec3{});
-      std::fill(torque, torque + n, Vec3{});
-      if constexpr (sum_rule) {
-        thread_stiffness_[t].assign(n, 0.0);
-        stiffness = thread_stiffness_[t].data();
+      for (int c = 0; c < block.count; ++c)
+        if (!block.evaluated_before[c])
+          local.max_stiffness_over_mass = std::max(local.max_stiffness_over_mass, block.stiffness_over_mass[c]);
+      measure_block(block, local);
+    };
+    auto block_result = [&](int c) {
+      Contribution r;
+      r.particle_j = block.other[c];
+      r.force_on_j = {block.force_x[c], block.force_y[c], block.force_z[c]};
+      r.torque_i = {block.torque_i_x[c], block.torque_i_y[c], block.torque_i_z[c]};
+      r.torque_j = {block.torque_j_x[c], block.torque_j_y[c], block.torque_j_z[c]};
+      r.stiffness = block.stiffness[c];
+      if constexpr (Measure) {
+        r.energy = block.energy[c];
+        r.force_norm = block.force_norm[c];
+      }
+      return r;
+    };
+    const int begin = work.particle_begin, end = work.particle_end;
+
+    // 1. The pairs and bonds that reach a later thread's particles, kept for both sides.
+    if (T > 1) {
+      const int crossing = static_cast<int>(work.crossing_pairs.size());
+      std::fill(work.crossing_pair_acts.begin(), work.crossing_pair_acts.end(), 0);
+      for (int s = 0; s < crossing; s += capacity) {
+        const int count = std::min(capacity, crossing - s);
+        run_block.template operator()<true>(work.crossing_pairs.data(), s, count, INT_MAX);
+        // The acting ones, in list order: find each one's place among the crossing pairs.
+        int k = s;
+        for (int c = 0; c < block.count; ++c) {
+          while (work.crossing_pairs[static_cast<std::size_t>(k)] != block.pair[c]) ++k;
+          work.crossing_pair_results[static_cast<std::size_t>(k)] = block_result(c);
+          work.crossing_pair_acts[static_cast<std::size_t>(k)] = 1;
+        }
+      }
+      crossing_seen = 0;
+      if (any_bonds)
+        std::visit(
+            [&](auto& bonds) {
+              using BondLaw = std::decay_t<decltype(bonds.law)>;
+              for (std::size_t c = 0; c < work.crossing_bonds.size(); ++c)
+                bond_contribution<BondLaw, Measure>(
+                    bonds, static_cast<std::size_t>(bond_order_[static_cast<std::size_t>(work.crossing_bonds[c])]),
+                    work.crossing_bond_results[c], work);
+            },
+            bond_model_);
+#pragma omp barrier
+    }
+
+    // 2. This thread's particles: what earlier threads' acting crossing pairs give them, then
+    // the own pairs in list order (a crossing pair's own side from step 1).
+    std::fill(force + begin, force + end, Vec3{});
+    std::fill(torque + begin, torque + end, Vec3{});
+    if constexpr (SumRule) std::fill(stiffness + begin, stiffness + end, 0.0);
+    for (int s = 0; s < t; ++s) {
+      const ThreadWork& earlier = work_[static_cast<std::size_t>(s)];
+      for (std::size_t c = 0; c < earlier.crossing_pair_results.size(); ++c) {
+        const Contribution& r = earlier.crossing_pair_results[c];
+        if (earlier.crossing_pair_acts[c] && r.particle_j >= begin && r.particle_j < end) add_to_other(r);
       }
     }
-    std::vector<Ghost>* ghosts = owned ? &thread_ghosts_[t] : nullptr;
-    Totals local;
-    for (int i = i_begin; i < i_end; ++i) {
-      const Vec3 xi = x[i], vi = v[i], wi = w[i];
-      const double ri = rad[i];
-      const double inverse_mass_i = inverse_mass[i];
-      const auto* params_i = params + type[i] * type_count;
-      Vec3 force_i{}, torque_i{};
-      double stiffness_i = 0.0;
-      for (int p = first[i]; p < first[i + 1]; ++p) {
-        const int j = partner[p];
-        const Vec3 d = x[j] + offsets[image[p]] - xi;
-        const double dist2 = norm2(d);
-        const double rsum = ri + rad[j];
-        const auto& pair_params = params_i[type[j]];
-        const double cutoff = rsum + Law::reach(pair_params);  // rsum for laws acting on overlap only
-        if (dist2 >= cutoff * cutoff || (any_bonded && bonded[p])) {
-          // Out of range (its history ends), or bonded (the bond law acts instead).
-          history[p] = typename Law::History{};
+    std::size_t crossing_index = 0;
+    const int pairs_end = first[end];
+    for (int p0 = first[begin]; p0 < pairs_end; p0 += capacity) {
+      const int count = std::min(capacity, pairs_end - p0);
+      run_block.template operator()<false>(nullptr, p0, count, end);
+      for (int c = 0; c < block.count; ++c) {
+        const int i = block.owner[c], j = block.other[c];
+        if (block.evaluated_before[c]) {
+          while (work.crossing_pairs[crossing_index] != block.pair[c]) ++crossing_index;
+          add_to_owner(i, work.crossing_pair_results[crossing_index]);
           continue;
         }
-        const double dist = std::sqrt(dist2);
-        // pair_geometry() inlined with particle i's data held in registers (hot loop).
-        ContactGeometry g;
-        g.normal = d * (1.0 / dist);
-        g.overlap = rsum - dist;
-        g.branch_i = ri - 0.5 * g.overlap;
-        g.branch_j = rad[j] - 0.5 * g.overlap;
-        g.relative_velocity = v[j] - vi - cross(g.branch_j * w[j] + g.branch_i * wi, g.normal);
-        g.mean_spin = 0.5 * (wi + w[j]);
-        g.dt = dt;
-        // Unused by laws that do not need them (the compiler drops the loads).
-        g.radius_i = ri;
-        g.radius_j = rad[j];
-        // Two fixed particles: 0, not infinity (a select, no branch), so no NaN reaches them.
-        const double inverse_sum = inverse_mass_i + inverse_mass[j];
-        g.effective_mass = inverse_sum > 0.0 ? 1.0 / inverse_sum : 0.0;
-        g.spin_i = wi;
-        g.spin_j = w[j];
-        const PairForce f = Law::evaluate(g, pair_params, history[p]);
-        local.max_stiffness_over_mass =
-            std::max(local.max_stiffness_over_mass, f.stiffness * std::max(inverse_mass_i, inverse_mass[j]));
-        force_i -= f.force_on_j;
-        torque_i += f.torque_i;
-        if constexpr (sum_rule) stiffness_i += f.stiffness;
-        if (ghosts && j >= i_end) {
-          ghosts->push_back(Ghost{j, f.force_on_j, f.torque_j, f.stiffness});
-        } else {
-          force[j] += f.force_on_j;
-          torque[j] += f.torque_j;
-          if constexpr (sum_rule) stiffness[j] += f.stiffness;
+        const Vec3 f{block.force_x[c], block.force_y[c], block.force_z[c]};
+        force[i] -= f;
+        force[j] += f;
+        torque[i] += Vec3{block.torque_i_x[c], block.torque_i_y[c], block.torque_i_z[c]};
+        torque[j] += Vec3{block.torque_j_x[c], block.torque_j_y[c], block.torque_j_z[c]};
+        if constexpr (SumRule) {
+          stiffness[i] += block.stiffness[c];
+          stiffness[j] += block.stiffness[c];
         }
         if constexpr (Measure) {
-          local.contacts += g.overlap > 0.0;
-          local.contact_force_sum += norm(f.force_on_j);
-          local.strain_energy += f.energy;
-          local.max_overlap_ratio = std::max(local.max_overlap_ratio, g.overlap / rsum);
+          measure_energy[i] += block.energy[c];
+          measure_force[i] += block.force_norm[c];
         }
       }
-      force[i] += force_i;
-      torque[i] += torque_i;
-      if constexpr (sum_rule) stiffness[i] += stiffness_i;
     }
-    if (any_bonded)
-      std::visit([&](auto& bonds) { bond_forces<typename std::decay_t<decltype(bonds.law)>, Measure>(
-                                        bonds, t, force, torque, stiffness, local); },
-                 bond_model_);
-    if (!walls_.empty()) wall_forces<Law, Measure>(model, t, force, torque, stiffness, local);
-    thread_totals_[t] = local;
-#pragma omp barrier
-    if (owned) {
-      // Contributions of earlier threads to this thread's particles, in thread order:
-      // deterministic for a fixed thread count.
+
+    // 3. Bonds the same way: earlier threads' crossing bonds, then the own ones in order.
+    if (any_bonds) {
       for (int s = 0; s < t; ++s)
-        for (const Ghost& g : thread_ghosts_[s]) {
-          if (g.particle < i_begin || g.particle >= i_end) continue;
-          force[g.particle] += g.force;
-          torque[g.particle] += g.torque;
-          if constexpr (sum_rule) stiffness[g.particle] += g.stiffness;
-        }
-    } else if (T > 1) {
-      // Sum the thread buffers in thread order: deterministic for a fixed thread count.
-#pragma omp for schedule(static)
-      for (int k = 0; k < n; ++k) {
-        Vec3 f{}, m{};
-        for (int s = 0; s < T; ++s) {
-          f += thread_force_[s][k];
-          m += thread_torque_[s][k];
-        }
-        particles_.force[k] = f;
-        particles_.torque[k] = m;
-      }
+        for (const Contribution& c : work_[static_cast<std::size_t>(s)].crossing_bond_results)
+          if (c.particle_j >= begin && c.particle_j < end) add_to_other(c);
+      std::visit(
+          [&](auto& bonds) {
+            using BondLaw = std::decay_t<decltype(bonds.law)>;
+            std::size_t crossing_bonds_seen = 0;
+            Contribution c;
+            for (int q = bond_first_[begin]; q < bond_first_[end]; ++q) {
+              const auto b = static_cast<std::size_t>(bond_order_[static_cast<std::size_t>(q)]);
+              const int bond_owner = std::min(bonds_.i[b], bonds_.j[b]);
+              if (std::max(bonds_.i[b], bonds_.j[b]) >= end) {
+                add_to_owner(bond_owner, work.crossing_bond_results[crossing_bonds_seen++]);
+                continue;
+              }
+              bond_contribution<BondLaw, Measure>(bonds, b, c, work);
+              add_to_owner(bond_owner, c);
+              add_to_other(c);
+            }
+          },
+          bond_model_);
     }
-    if constexpr (sum_rule) {
+
+    // 4. Walls: per particle, over fixed chunks (the wall forces are sums over particles).
+    if (!walls_.empty()) {
+#pragma omp barrier
+      local.max_stiffness_over_mass =
+          std::max(local.max_stiffness_over_mass,
+                   wall_forces<Law, Measure>(model, stiffness, measure_energy, measure_force, &local.contacts));
+    }
+
+    if constexpr (SumRule) {
       // The stiffest particle: sum of its contact stiffnesses over its mass (fixed particles
-      // have zero inverse mass and drop out). Max is order-independent: deterministic.
+      // have zero inverse mass and drop out).
+      const double* __restrict inverse_mass = particles_.inverse_mass.data();
       double largest = 0.0;
-      if (T == 1 || owned) {
-        for (int k = i_begin; k < i_end; ++k) largest = std::max(largest, stiffness[k] * inverse_mass[k]);
-      } else {
-#pragma omp for schedule(static)
-        for (int k = 0; k < n; ++k) {
-          double sum = 0.0;
-          for (int s = 0; s < T; ++s) sum += thread_stiffness_[s][k];
-          largest = std::max(largest, sum * inverse_mass[k]);
-        }
-      }
-      thread_totals_[t].max_stiffness_over_mass = largest;
+      for (int k = begin; k < end; ++k) largest = std::max(largest, stiffness[k] * inverse_mass[k]);
+      local.max_stiffness_over_mass = largest;
     }
   }
-  for (int t = 0; t < T; ++t) {
-    totals.max_stiffness_over_mass = std::max(totals.max_stiffness_over_mass, thread_totals_[t].max_stiffness_over_mass);
-    totals.bond_breaks += thread_totals_[t].bond_breaks;
+
+  // Order-independent reductions (max, counts) over threads; sums in particle order.
+  std::size_t first_break = breaks_.size();
+  for (const ThreadWork& work : work_) {
+    totals.max_stiffness_over_mass = std::max(totals.max_stiffness_over_mass, work.totals.max_stiffness_over_mass);
+    totals.bond_breaks += work.totals.bond_breaks;
+    breaks_.insert(breaks_.end(), work.breaks.begin(), work.breaks.end());
+    if constexpr (Measure) {
+      totals.contacts += work.totals.contacts;
+      totals.max_overlap_ratio = std::max(totals.max_overlap_ratio, work.totals.max_overlap_ratio);
+    }
   }
+  std::stable_sort(breaks_.begin() + static_cast<std::ptrdiff_t>(first_break), breaks_.end(),
+                   [](const BondBreak& a, const BondBreak& b) { return a.bond < b.bond; });
+  broken_bonds_ += totals.bond_breaks;
   for (std::size_t m = 0; m < walls_.size(); ++m) {
     Vec3 sum{};
-    for (int t = 0; t < T; ++t) sum += thread_wall_force_[t][m];
+    for (int c = 0; c < chunk_count(n); ++c) sum += wall_chunk_force_[static_cast<std::size_t>(c) * walls_.size() + m];
     wall_force_[m] = sum;
   }
-  broken_bonds_ += totals.bond_breaks;
-  if (totals.bond_breaks > 0)
-    for (int t = 0; t < T; ++t) {
-      breaks_.insert(breaks_.end(), thread_breaks_[t].begin(), thread_breaks_[t].end());
-      thread_breaks_[t].clear();
-    }
   if constexpr (Measure) {
-    for (int t = 0; t < T; ++t) {
-      totals.contacts += thread_totals_[t].contacts;
-      totals.contact_force_sum += thread_totals_[t].contact_force_sum;
-      totals.strain_energy += thread_totals_[t].strain_energy;
-      totals.max_overlap_ratio = std::max(totals.max_overlap_ratio, thread_totals_[t].max_overlap_ratio);
+    for (int k = 0; k < n; ++k) {
+      totals.strain_energy += measure_energy[k];
+      totals.contact_force_sum += measure_force[k];
     }
   }
+}
+
+template <class Law, bool Measure>
+double Engine::wall_forces(ContactModel<Law>& model, double* stiffness, double* measure_energy, double* measure_force,
+                           std::size_t* wall_contacts) {
+  const int n = static_cast<int>(particles_.size());
+  const std::size_t walls = walls_.size();
+  const int chunks = chunk_count(n);
+  const auto& P = particles_;
+  Vec3* force = particles_.force.data();
+  Vec3* torque = particles_.torque.data();
+  std::size_t contacts = 0;
+  double max_stiffness_over_mass = 0.0;
+#pragma omp for schedule(static)
+  for (int c = 0; c < chunks; ++c) {
+    Vec3* chunk_force = &wall_chunk_force_[static_cast<std::size_t>(c) * walls];
+    std::fill(chunk_force, chunk_force + walls, Vec3{});
+    for (int k = c * chunk_size; k < std::min(n, (c + 1) * chunk_size); ++k) {
+      for (std::size_t m = 0; m < walls; ++m) {
+        const Wall& wall = walls_[m];
+        const double distance = dot(P.position[k] - wall.point, wall.normal);
+        auto& history = model.wall_history[static_cast<std::size_t>(k) * walls + m];
+        const int t = P.type[k];
+        const auto& params = model.params(t, t);
+        if (distance >= P.radius[k] + Law::reach(params)) {
+          history = typename Law::History{};
+          continue;
+        }
+        const ContactGeometry g = wall_geometry(static_cast<std::size_t>(k), wall, distance);
+        const PairForce f = Law::evaluate(g, params, history);
+        force[k] -= f.force_on_j;
+        torque[k] += f.torque_i;
+        chunk_force[m] += f.force_on_j;
+        max_stiffness_over_mass = std::max(max_stiffness_over_mass, f.stiffness * P.inverse_mass[k]);
+        if (stiffness) stiffness[k] += f.stiffness;
+        if constexpr (Measure) {
+          contacts += g.overlap > 0.0;
+          measure_energy[k] += f.energy;
+          measure_force[k] += norm(f.force_on_j);
+        }
+      }
+    }
+  }
+  *wall_contacts += contacts;
+  return max_stiffness_over_mass;
 }
 
 template <bool Measure>
@@ -311,33 +555,46 @@ void Engine::integrate(Totals& totals) {
   const int n = static_cast<int>(particles_.size());
   const double dt = dt_;
   auto& P = particles_;
-  double kinetic = 0.0, unbalanced = 0.0;
-  long free_count = 0;
-#pragma omp parallel for num_threads(threads_) schedule(static) reduction(+ : kinetic, unbalanced, free_count)
-  for (int i = 0; i < n; ++i) {
-    // Fixed particles have zero inverse mass and inertia: they keep zero velocity without a
-    // branch, so the loop vectorizes.
-    const double alpha = damping_[i];
-    const Vec3 f = apply_local_damping(P.force[i], P.velocity[i], alpha);
-    const Vec3 m = apply_local_damping(P.torque[i], P.angular_velocity[i], alpha);
-    const Vec3 dv = (P.inverse_mass[i] * dt) * f;
-    const Vec3 dw = (P.inverse_inertia[i] * dt) * m;
-    if constexpr (Measure) {
-      if (!P.fixed[i]) {
-        const Vec3 v_sync = P.velocity[i] + 0.5 * dv;
-        const Vec3 w_sync = P.angular_velocity[i] + 0.5 * dw;
-        kinetic += 0.5 * (P.mass[i] * norm2(v_sync) + P.inertia[i] * norm2(w_sync));
-        unbalanced += norm(P.force[i]);
-        ++free_count;
+  const int chunks = chunk_count(n);
+  if constexpr (Measure) chunk_sums_.assign(3 * static_cast<std::size_t>(chunks), 0.0);
+#pragma omp parallel for num_threads(threads_) schedule(static)
+  for (int c = 0; c < chunks; ++c) {
+    double kinetic = 0.0, unbalanced = 0.0, free_count = 0.0;
+    for (int i = c * chunk_size; i < std::min(n, (c + 1) * chunk_size); ++i) {
+      // Fixed particles have zero inverse mass and inertia: they keep zero velocity without a
+      // branch, so the loop vectorizes.
+      const double alpha = damping_[i];
+      const Vec3 f = apply_local_damping(P.force[i], P.velocity[i], alpha);
+      const Vec3 m = apply_local_damping(P.torque[i], P.angular_velocity[i], alpha);
+      const Vec3 dv = (P.inverse_mass[i] * dt) * f;
+      const Vec3 dw = (P.inverse_inertia[i] * dt) * m;
+      if constexpr (Measure) {
+        if (!P.fixed[i]) {
+          const Vec3 v_sync = P.velocity[i] + 0.5 * dv;
+          const Vec3 w_sync = P.angular_velocity[i] + 0.5 * dw;
+          kinetic += 0.5 * (P.mass[i] * norm2(v_sync) + P.inertia[i] * norm2(w_sync));
+          unbalanced += norm(P.force[i]);
+          free_count += 1.0;
+        }
       }
+      P.velocity[i] += dv;
+      P.angular_velocity[i] += dw;
+      P.position[i] += dt * P.velocity[i];
     }
-    P.velocity[i] += dv;
-    P.angular_velocity[i] += dw;
-    P.position[i] += dt * P.velocity[i];
+    if constexpr (Measure) {
+      chunk_sums_[3 * static_cast<std::size_t>(c)] = kinetic;
+      chunk_sums_[3 * static_cast<std::size_t>(c) + 1] = unbalanced;
+      chunk_sums_[3 * static_cast<std::size_t>(c) + 2] = free_count;
+    }
   }
   if constexpr (Measure) {
-    totals.kinetic_energy = kinetic;
-    totals.unbalanced_force_sum = unbalanced;
+    // Chunk sums in chunk order: the same at any thread count.
+    double free_count = 0.0;
+    for (int c = 0; c < chunks; ++c) {
+      totals.kinetic_energy += chunk_sums_[3 * static_cast<std::size_t>(c)];
+      totals.unbalanced_force_sum += chunk_sums_[3 * static_cast<std::size_t>(c) + 1];
+      free_count += chunk_sums_[3 * static_cast<std::size_t>(c) + 2];
+    }
     totals.free_particles = static_cast<std::size_t>(free_count);
   }
 }

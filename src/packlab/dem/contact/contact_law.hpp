@@ -22,8 +22,10 @@
 // (docs/engine.md, "Adding a contact law").
 #pragma once
 
+#include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
 #include <numbers>
 #include <string_view>
 
@@ -34,21 +36,21 @@ namespace packlab::dem {
 
 // What the engine knows about an interacting pair at time t.
 struct ContactGeometry {
-  Vec3 normal;             // unit vector from particle i to particle j
-  double overlap;          // r_i + r_j - distance [m]: > 0 touching, < 0 apart (bonds, laws with reach)
-  double branch_i;         // distance from centre i to the contact point [m]
-  double branch_j;         // distance from centre j to the contact point [m]
-  Vec3 relative_velocity;  // velocity of j's contact point relative to i's [m/s]
-  Vec3 mean_spin;          // (omega_i + omega_j) / 2 [rad/s]
-  double dt;               // time step [s]
-  double radius_i = 0.0;   // [m]
-  double radius_j = 0.0;   // [m]
+  Vec3 normal;                  // unit vector from particle i to particle j
+  double overlap;               // r_i + r_j - distance [m]: > 0 touching, < 0 apart (bonds, laws with reach)
+  double branch_i;              // distance from centre i to the contact point [m]
+  double branch_j;              // distance from centre j to the contact point [m]
+  Vec3 relative_velocity;       // velocity of j's contact point relative to i's [m/s]
+  Vec3 mean_spin;               // (omega_i + omega_j) / 2 [rad/s]
+  double dt;                    // time step [s]
+  double radius_i = 0.0;        // [m]
+  double radius_j = 0.0;        // [m]
   double effective_mass = 0.0;  // m_i m_j / (m_i + m_j) [kg] (m_i alone against a fixed j)
   Vec3 spin_i{}, spin_j{};      // angular velocities [rad/s]
   // Bonds only:
-  Vec3 relative_spin{};         // omega_j - omega_i [rad/s]
-  double rest_length = 0.0;     // initial bond length [m]
-  double time = 0.0;            // simulated time [s]
+  Vec3 relative_spin{};      // omega_j - omega_i [rad/s]
+  double rest_length = 0.0;  // initial bond length [m]
+  double time = 0.0;         // simulated time [s]
 };
 
 struct PairForce {
@@ -65,6 +67,17 @@ struct PairForce {
 // mean spin of the pair (the twist). Both are first-order rotations, as LAMMPS's granular
 // history does: the magnitude changes only at second order in the rotation per step
 // (~1e-12 relative for typical steps), with no sqrt or division in the pair loop.
+// Branch-free forms for the laws: the engine evaluates them over blocks of pairs in a loop that
+// vectorizes only without branches (dem/step.cpp). slip_scale(f2, limit) is the factor that
+// brings a force of squared magnitude f2 down to the Coulomb limit (1 while within it);
+// safe_inverse(s) is 1 / s for s > 0 and 0 for s == 0 (no division by zero, no branch).
+inline double slip_scale(double f2, double limit) {
+  return std::min(1.0, limit / std::sqrt(std::max(f2, std::numeric_limits<double>::min())));
+}
+inline double safe_inverse(double s) {
+  return static_cast<double>(s > 0.0) / std::max(s, std::numeric_limits<double>::min());
+}
+
 inline Vec3 rotate_into_plane(Vec3 tangential, const Vec3& normal, const Vec3& mean_spin, double dt) {
   tangential -= dot(tangential, normal) * normal;
   tangential += (dot(mean_spin, normal) * dt) * cross(normal, tangential);

@@ -19,7 +19,7 @@ namespace packlab::dem {
 struct HertzMindlin {
   static constexpr std::string_view name = "hertz_mindlin";
   static constexpr std::array<std::string_view, 5> properties{"youngs_modulus", "poisson_ratio", "restitution",
-                                                             "friction", "rolling_friction"};
+                                                              "friction", "rolling_friction"};
   struct Params {
     double effective_youngs_modulus;  // E* [Pa]
     double effective_shear_modulus;   // G* [Pa]
@@ -37,7 +37,8 @@ struct HertzMindlin {
     const double e = std::min(a.restitution, b.restitution);
     const double log_e = std::log(e);
     return {1.0 / inv_e, 1.0 / inv_g, std::min(a.friction, b.friction),
-            log_e / std::sqrt(std::numbers::pi * std::numbers::pi + log_e * log_e), std::min(a.rolling_friction, b.rolling_friction)};
+            log_e / std::sqrt(std::numbers::pi * std::numbers::pi + log_e * log_e),
+            std::min(a.rolling_friction, b.rolling_friction)};
   }
   static constexpr double reach(const Params& /*p*/) { return 0.0; }
   // For the global time-step rule: the normal stiffness S_n at an overlap of 1 % of the radius
@@ -51,9 +52,9 @@ struct HertzMindlin {
     const Vec3& n = g.normal;
     const double r_eff = g.radius_i * g.radius_j / (g.radius_i + g.radius_j);
     const double root = std::sqrt(r_eff * g.overlap);
-    const double normal_stiffness = 2.0 * p.effective_youngs_modulus * root;       // S_n
-    const double tangential_stiffness = 8.0 * p.effective_shear_modulus * root;    // S_t
-    const double damping_factor = -2.0 * std::sqrt(5.0 / 6.0) * p.damping_beta;   // >= 0
+    const double normal_stiffness = 2.0 * p.effective_youngs_modulus * root;     // S_n
+    const double tangential_stiffness = 8.0 * p.effective_shear_modulus * root;  // S_t
+    const double damping_factor = -2.0 * std::sqrt(5.0 / 6.0) * p.damping_beta;  // >= 0
     const double vn = dot(g.relative_velocity, n);
     const Vec3 vt = g.relative_velocity - vn * n;
     // eq. 5; v_n < 0 while approaching, so the damping pushes j away then.
@@ -63,12 +64,10 @@ struct HertzMindlin {
     // eq. 8-10: update the tangential overlap, limit the elastic force by slip.
     Vec3 xi = rotate_into_plane(tangential_overlap, n, g.mean_spin, g.dt) + g.dt * vt;
     Vec3 elastic_tangential = -tangential_stiffness * xi;
-    const double limit = p.friction * normal_force;
-    const double f2 = norm2(elastic_tangential);
-    if (f2 > limit * limit) {
-      elastic_tangential *= limit / std::sqrt(f2);
-      xi = tangential_stiffness > 0.0 ? elastic_tangential * (-1.0 / tangential_stiffness) : Vec3{};
-    }
+    const double scale = slip_scale(norm2(elastic_tangential), p.friction * normal_force);
+    elastic_tangential *= scale;
+    // Slip: the overlap that gives the limited force (xi scaled alike; S_t > 0 while touching).
+    xi *= scale;
     tangential_overlap = xi;
     const Vec3 ft =
         elastic_tangential - (damping_factor * std::sqrt(tangential_stiffness * g.effective_mass)) * vt;  // eq. 6
@@ -79,12 +78,11 @@ struct HertzMindlin {
     out.torque_j = -g.branch_j * moment_arm;
     // Rolling resistance against each particle's own spin.
     const double rolling = p.rolling_friction * normal_force;
-    const double wi = norm(g.spin_i), wj = norm(g.spin_j);
-    if (rolling > 0.0 && wi > 0.0) out.torque_i -= (rolling * g.radius_i / wi) * g.spin_i;
-    if (rolling > 0.0 && wj > 0.0) out.torque_j -= (rolling * g.radius_j / wj) * g.spin_j;
+    out.torque_i -= (rolling * g.radius_i * safe_inverse(norm(g.spin_i))) * g.spin_i;
+    out.torque_j -= (rolling * g.radius_j * safe_inverse(norm(g.spin_j))) * g.spin_j;
     out.normal_force = normal_force;
-    out.energy = 8.0 / 15.0 * p.effective_youngs_modulus * root * g.overlap * g.overlap +
-                 0.5 * tangential_stiffness * norm2(xi);
+    out.energy =
+        8.0 / 15.0 * p.effective_youngs_modulus * root * g.overlap * g.overlap + 0.5 * tangential_stiffness * norm2(xi);
     out.stiffness = std::max(normal_stiffness, tangential_stiffness);
     return out;
   }

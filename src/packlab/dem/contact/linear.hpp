@@ -31,10 +31,8 @@ struct LinearContact {
     const double normal_force = p.normal_stiffness * g.overlap;  // eq. 1
     Vec3 fs = rotate_into_plane(shear_force, n, g.mean_spin, g.dt);
     const Vec3 vt = g.relative_velocity - dot(g.relative_velocity, n) * n;
-    fs -= (p.shear_stiffness * g.dt) * vt;  // eq. 2, dU_s = v_t dt
-    const double limit = p.friction * normal_force;
-    const double fs2 = norm2(fs);
-    if (fs2 > limit * limit) fs *= limit / std::sqrt(fs2);  // Coulomb slip
+    fs -= (p.shear_stiffness * g.dt) * vt;                   // eq. 2, dU_s = v_t dt
+    fs *= slip_scale(norm2(fs), p.friction * normal_force);  // Coulomb slip
     shear_force = fs;
     const Vec3 moment_arm = cross(n, fs);
     PairForce out;
@@ -42,8 +40,7 @@ struct LinearContact {
     out.torque_i = -g.branch_i * moment_arm;
     out.torque_j = -g.branch_j * moment_arm;
     out.normal_force = normal_force;
-    out.energy = 0.5 * normal_force * g.overlap +
-                 (p.shear_stiffness > 0.0 ? 0.5 * norm2(fs) / p.shear_stiffness : 0.0);
+    out.energy = 0.5 * normal_force * g.overlap + 0.5 * norm2(fs) * safe_inverse(p.shear_stiffness);
     out.stiffness = std::max(p.normal_stiffness, p.shear_stiffness);
     return out;
   }

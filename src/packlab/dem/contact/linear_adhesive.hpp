@@ -23,7 +23,7 @@ namespace packlab::dem {
 struct LinearAdhesive {
   static constexpr std::string_view name = "linear_adhesive";
   static constexpr std::array<std::string_view, 5> properties{"normal_stiffness", "shear_stiffness", "friction",
-                                                             "work_of_adhesion", "adhesion_range"};
+                                                              "work_of_adhesion", "adhesion_range"};
   struct Params {
     double normal_stiffness;  // [N/m]
     double shear_stiffness;   // [N/m]
@@ -46,36 +46,31 @@ struct LinearAdhesive {
     return 2.0 * std::numbers::pi * p.work_of_adhesion * radius_i * radius_j / (radius_i + radius_j);
   }
 
+  // Both branches (apart, touching) evaluated and selected: no branch (contact_law.hpp).
   static PairForce evaluate(const ContactGeometry& g, const Params& p, History& shear_force) {
     const Vec3& n = g.normal;
     const double f0 = pull_off_force(p, g.radius_i, g.radius_j);
     const double d = g.overlap;
-    PairForce out{};
-    out.stiffness = std::max({p.normal_stiffness, p.shear_stiffness, f0 / p.adhesion_range});
-    if (d < 0.0) {  // apart: the fading attraction only
-      shear_force = Vec3{};
-      const double apart = std::max(0.0, 1.0 + d / p.adhesion_range);
-      const double normal_force = -f0 * apart;
-      out.force_on_j = normal_force * n;
-      out.normal_force = normal_force;
-      out.energy = -0.5 * f0 * p.adhesion_range * apart * apart;
-      return out;
-    }
-    const double normal_force = p.normal_stiffness * d - f0;
+    const bool touching = d >= 0.0;
+    // Apart: the fading attraction only.
+    const double apart = std::max(0.0, 1.0 + d / p.adhesion_range);
+    // Touching: spring, pull-off force, and the shear spring limited by mu k_n d.
     Vec3 fs = rotate_into_plane(shear_force, n, g.mean_spin, g.dt);
     const Vec3 vt = g.relative_velocity - dot(g.relative_velocity, n) * n;
     fs -= (p.shear_stiffness * g.dt) * vt;
-    const double limit = p.friction * p.normal_stiffness * d;
-    const double fs2 = norm2(fs);
-    if (fs2 > limit * limit) fs *= limit / std::sqrt(fs2);
+    fs *= slip_scale(norm2(fs), p.friction * p.normal_stiffness * d) * static_cast<double>(touching);
     shear_force = fs;
+    const double normal_force = touching ? p.normal_stiffness * d - f0 : -f0 * apart;
     const Vec3 moment_arm = cross(n, fs);
+    PairForce out;
+    out.stiffness = std::max({p.normal_stiffness, p.shear_stiffness, f0 / p.adhesion_range});
     out.force_on_j = normal_force * n + fs;
     out.torque_i = -g.branch_i * moment_arm;
     out.torque_j = -g.branch_j * moment_arm;
     out.normal_force = normal_force;
-    out.energy = 0.5 * p.normal_stiffness * d * d - f0 * d - 0.5 * f0 * p.adhesion_range +
-                 (p.shear_stiffness > 0.0 ? 0.5 * norm2(fs) / p.shear_stiffness : 0.0);
+    out.energy = touching ? 0.5 * p.normal_stiffness * d * d - f0 * d - 0.5 * f0 * p.adhesion_range +
+                                0.5 * norm2(fs) * safe_inverse(p.shear_stiffness)
+                          : -0.5 * f0 * p.adhesion_range * apart * apart;
     return out;
   }
 };
