@@ -10,11 +10,13 @@
 #include <cstdlib>
 #include <numbers>
 
+#include "packlab/core/thread_wait.hpp"
 #include "packlab/dem/engine.hpp"
 
 using namespace packlab;
 
 int main(int argc, char** argv) {
+  ensure_passive_thread_wait(argv);  // as the packlab program does (core/thread_wait.hpp)
   const int threads = argc > 1 ? std::atoi(argv[1]) : 1;
   const long steps = argc > 2 ? std::atol(argv[2]) : 20000;
   const long n = 8000;

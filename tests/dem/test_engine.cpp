@@ -192,31 +192,6 @@ TEST(Engine, LocalDampingRemovesEnergy) {
   }
 }
 
-TEST(Engine, DeterministicForAFixedThreadCount) {
-  Packing p = dense_random(2000, 0.68, 5);
-  EngineConfig config;
-  config.types = {Material{1000.0, 10.0, 0.1, 1000.0, 0.7}};
-  for (int threads : {1, 2}) {
-    config.threads = threads;
-    Engine a(p, config), b(p, config);
-    a.run(300);
-    b.run(300);
-    EXPECT_TRUE(a.particles().position == b.particles().position) << threads << " threads";
-    EXPECT_TRUE(a.particles().angular_velocity == b.particles().angular_velocity) << threads << " threads";
-  }
-  // One and two threads sum forces in a different order: equal to round-off.
-  config.threads = 1;
-  Engine one(p, config);
-  config.threads = 2;
-  Engine two(p, config);
-  one.run(50);
-  two.run(50);
-  double max_diff = 0.0;
-  for (std::size_t i = 0; i < p.size(); ++i)
-    max_diff = std::max(max_diff, norm(one.particles().position[i] - two.particles().position[i]));
-  EXPECT_LT(max_diff, 1e-9);
-}
-
 TEST(Engine, TimeStepFromLightestParticleAndStiffestSpring) {
   Packing p;
   p.box.length = {10, 10, 10};

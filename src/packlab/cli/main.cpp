@@ -4,15 +4,17 @@
 
 #include <CLI/CLI.hpp>
 #include <cstdio>
-#include <new>
 #include <exception>
+#include <new>
 #include <string>
 
 #include "packlab/cli/commands.hpp"
 #include "packlab/core/error.hpp"
+#include "packlab/core/thread_wait.hpp"
 #include "packlab/io/report.hpp"
 
 int main(int argc, char** argv) {
+  packlab::ensure_passive_thread_wait(argv);
   CLI::App app{"packlab: random sphere packings, their microstructure and DEM load tests", "packlab"};
   app.set_version_flag("--version", fmt::format("packlab {}", packlab::io::version()));
   app.require_subcommand(1);
@@ -74,8 +76,9 @@ int main(int argc, char** argv) {
   } catch (const std::bad_alloc&) {
     // A size the estimates let through, or a machine short of free memory: the input's fault
     // more than the program's, and nothing was half-written (outputs are atomic).
-    std::fprintf(stderr, "packlab: error: out of memory: the problem is too large for the free memory of this machine; "
-                         "use fewer particles or a larger machine\n");
+    std::fprintf(stderr,
+                 "packlab: error: out of memory: the problem is too large for the free memory of this machine; "
+                 "use fewer particles or a larger machine\n");
     return 2;
   } catch (const std::exception& e) {
     std::fprintf(stderr, "packlab: internal error: %s\n", e.what());

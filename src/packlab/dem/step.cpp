@@ -15,7 +15,10 @@
 //
 // The contact law runs over blocks of 64 listed pairs into per-component arrays (PairBlock):
 // no branch on whether a pair touches (its result is masked), so the loop vectorizes; the
-// forces are then added to the particles in a short scalar loop.
+// forces are then added to the particles in a short scalar loop. packlab is compiled without
+// fused multiply-add contraction (-ffp-contract=off, CMakeLists.txt): a pair's force must not depend on whether it falls in
+// the vector body or the scalar remainder of that loop, which differ in where the compiler
+// fuses multiply-adds, and a pair's place in a block depends on the thread count.
 #include <omp.h>
 
 #include <algorithm>
