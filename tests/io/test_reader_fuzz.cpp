@@ -11,9 +11,10 @@
 // Every random choice comes from one std::mt19937_64, so a run is reproducible: the same seed
 // and iteration count give the same mutants, and each failing mutant is also kept as a file
 // (its path is in the failure message). The default run is short, for every `make test`:
-//   PACKLAB_FUZZ_ITERATIONS   mutants per format (default 1,000, i.e. 6,000 in all)
+//   PACKLAB_FUZZ_ITERATIONS   mutants per format (default 10,000: about 1 s per format, 60,000 in all)
 //   PACKLAB_FUZZ_SEED         the generator's seed (default 20240611)
 // e.g. PACKLAB_FUZZ_ITERATIONS=100000 build/packlab_tests --gtest_filter='ReaderFuzz.*'
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -35,8 +36,6 @@
 #include <typeinfo>
 #include <vector>
 
-#include <fmt/format.h>
-
 #include "io_test_dir.hpp"
 #include "packlab/core/error.hpp"
 #include "packlab/core/packing.hpp"
@@ -48,7 +47,7 @@ namespace {
 namespace fs = std::filesystem;
 
 constexpr std::uint64_t default_seed = 20240611;
-constexpr std::uint64_t default_iterations = 1000;
+constexpr std::uint64_t default_iterations = 10000;
 // Every seed is a few hundred bytes and reads in well under a millisecond, also under the
 // sanitizers; a read this slow is a hang (or a worse than linear parser).
 constexpr auto read_time_limit = std::chrono::seconds(20);
@@ -129,8 +128,8 @@ class Watchdog {
     while (!stop_) {
       wake_.wait_for(lock, std::chrono::milliseconds(200));
       if (busy_ && std::chrono::steady_clock::now() - started_ > limit_) {
-        std::fprintf(stderr, "reader fuzz: %s: no result after %lld s (a hang?); the file is kept\n",
-                     what_.c_str(), static_cast<long long>(limit_.count()));
+        std::fprintf(stderr, "reader fuzz: %s: no result after %lld s (a hang?); the file is kept\n", what_.c_str(),
+                     static_cast<long long>(limit_.count()));
         std::fflush(stderr);
         std::abort();
       }
@@ -156,21 +155,62 @@ const std::vector<std::string> keywords = {
     "Lattice=\"", "Origin=\"", "pbc=\"", "Properties=", ":R:1", ":R:3", ":I:1", ":S:1", ":L:1", "pos:R:3",
     "species:S:1", "velo:R:3", "\"",
     // LAMMPS
-    "ITEM: ", "ITEM: ATOMS ", "ITEM: BOX BOUNDS ", "ITEM: NUMBER OF ATOMS\n", "pp ", "ff ", "xy xz yz ",
-    " atoms\n", " atom types\n", " xlo xhi", "\nAtoms # sphere\n\n", "\nVelocities\n\n", "\nBonds\n\n", "xs",
-    "xu", "id",
+    "ITEM: ", "ITEM: ATOMS ", "ITEM: BOX BOUNDS ", "ITEM: NUMBER OF ATOMS\n", "pp ", "ff ", "xy xz yz ", " atoms\n",
+    " atom types\n", " xlo xhi", "\nAtoms # sphere\n\n", "\nVelocities\n\n", "\nBonds\n\n", "xs", "xu", "id",
     // XML / VTU
     "<", ">", "</", "/>", "<!--", "-->", "<![CDATA[", "]]>", "<?xml", "?>", "&amp;", "&#x41;", "&lt;",
     "<DataArray type=\"Float64\" Name=\"radius\" format=\"ascii\">", "</DataArray>", "NumberOfComponents=\"3\"",
     "NumberOfPoints=\"", "<InformationKey>", "</InformationKey>", "format=\"binary\"", "<Piece>", "</Piece>",
     "<PointData>", "<CellData>", "Name=\"box_lo\"", "type=\"Int32\"", "type=\"UInt8\""};
 // Replacements for a number: edge values of double and integer parsing and of the checks.
-const std::vector<std::string> edge_numbers = {
-    "0", "-0", "1", "-1", "2", "3", "0.5", "1e-9", "nan", "-nan", "NaN", "inf", "-inf", "Infinity",
-    "1e308", "1.8e308", "-1e308", "4.9e-324", "1e-320", "1e999", "2147483647", "2147483648", "-2147483648",
-    "-2147483649", "4294967296", "9223372036854775807", "9223372036854775808", "-9223372036854775809",
-    "18446744073709551616", "1000000000", "100000000000000", "1e9", "1e18", "0x10", "0x1p3", "+5", ".", "-",
-    "+", "e", "1e", "1.2.3", "--1", "00000000000000000000000000000001", "", " ", "1 2", "1,2"};
+const std::vector<std::string> edge_numbers = {"0",
+                                               "-0",
+                                               "1",
+                                               "-1",
+                                               "2",
+                                               "3",
+                                               "0.5",
+                                               "1e-9",
+                                               "nan",
+                                               "-nan",
+                                               "NaN",
+                                               "inf",
+                                               "-inf",
+                                               "Infinity",
+                                               "1e308",
+                                               "1.8e308",
+                                               "-1e308",
+                                               "4.9e-324",
+                                               "1e-320",
+                                               "1e999",
+                                               "2147483647",
+                                               "2147483648",
+                                               "-2147483648",
+                                               "-2147483649",
+                                               "4294967296",
+                                               "9223372036854775807",
+                                               "9223372036854775808",
+                                               "-9223372036854775809",
+                                               "18446744073709551616",
+                                               "1000000000",
+                                               "100000000000000",
+                                               "1e9",
+                                               "1e18",
+                                               "0x10",
+                                               "0x1p3",
+                                               "+5",
+                                               ".",
+                                               "-",
+                                               "+",
+                                               "e",
+                                               "1e",
+                                               "1.2.3",
+                                               "--1",
+                                               "00000000000000000000000000000001",
+                                               "",
+                                               " ",
+                                               "1 2",
+                                               "1,2"};
 
 class Mutator {
  public:
@@ -189,9 +229,7 @@ class Mutator {
   }
 
  private:
-  char random_byte() {
-    return one_in(2) ? special_bytes[below(special_bytes.size())] : static_cast<char>(below(256));
-  }
+  char random_byte() { return one_in(2) ? special_bytes[below(special_bytes.size())] : static_cast<char>(below(256)); }
 
   static std::vector<std::string> split_lines(const std::string& text) {
     std::vector<std::string> lines;
@@ -234,11 +272,16 @@ class Mutator {
 
   std::string new_number(std::string_view old) {
     switch (below(6)) {
-      case 0: return fmt::format("-{}", old);
-      case 1: return fmt::format("{}{}", old, below(10));                  // one more digit
-      case 2: return fmt::format("{}e{}", old, static_cast<int>(below(700)) - 350);
-      case 3: return std::string(1 + below(400), static_cast<char>('0' + below(10)));  // very long
-      default: return edge_numbers[below(edge_numbers.size())];
+      case 0:
+        return fmt::format("-{}", old);
+      case 1:
+        return fmt::format("{}{}", old, below(10));  // one more digit
+      case 2:
+        return fmt::format("{}e{}", old, static_cast<int>(below(700)) - 350);
+      case 3:
+        return std::string(1 + below(400), static_cast<char>('0' + below(10)));  // very long
+      default:
+        return edge_numbers[below(edge_numbers.size())];
     }
   }
 
@@ -307,7 +350,8 @@ class Mutator {
         text.replace(at, one_in(2) ? 0 : below(text.size() - at + 1), piece);
         break;
       }
-      default: break;
+      default:
+        break;
     }
   }
 
@@ -379,8 +423,8 @@ TEST_F(ReaderFuzz, EveryMutantReadsOrIsRefusedWithAnInputError) {
         options.box = box;
       }
       const fs::path path = write_file(fmt::format("mutant{}", original.path.extension().string()), mutant);
-      watchdog.begin(fmt::format("{} (mutant {} of {}, seed {})", path.string(), i, original.path.filename().string(),
-                                 seed));
+      watchdog.begin(
+          fmt::format("{} (mutant {} of {}, seed {})", path.string(), i, original.path.filename().string(), seed));
       const Outcome outcome = read_mutant(path, options);
       watchdog.end();
       if (!outcome.failure.empty()) {
