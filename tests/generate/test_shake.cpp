@@ -3,8 +3,10 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <sstream>
 
 #include "packlab/analyze/rdf.hpp"
+#include "packlab/core/binary_io.hpp"
 #include "packlab/core/error.hpp"
 #include "packlab/generate/lattice.hpp"
 #include "packlab/generate/ls.hpp"
@@ -115,4 +117,42 @@ TEST(Shake, OverlappingPackingIsRejected) {
   generate::ShakeParams sp;
   sp.window = -1;
   EXPECT_THROW(sp.validate(), InputError);
+}
+
+// Saved between two global shakes with the generator's state, a shaker of the same input
+// goes on exactly as the uninterrupted one.
+TEST(Shake, StateSavedBetweenSweepsResumesBitForBit) {
+  const Packing input = ls_packing(150, 0.45, 0.1, 8);
+  generate::ShakeParams params;
+  params.adaptive = true;
+  Packing straight = input;
+  Random rng_straight(5);
+  generate::Shaker a(straight, params);
+  a.sweeps(5, rng_straight);
+
+  Packing first = input;
+  Random rng(5);
+  generate::Shaker b(first, params);
+  b.sweeps(2, rng);
+  std::stringstream saved;
+  b.save_state(saved);
+  binary::write_random(saved, rng);
+
+  Packing second = input;
+  Random rng2(99);
+  generate::Shaker c(second, params);
+  c.load_state(saved);
+  binary::read_random(saved, rng2);
+  c.sweeps(3, rng2);
+  EXPECT_EQ(second.position, straight.position);
+  EXPECT_EQ(c.stats().moves, a.stats().moves);
+  EXPECT_EQ(c.stats().window, a.stats().window);
+
+  // The state of another packing is refused.
+  Packing other = ls_packing(150, 0.45, 0.1, 9);
+  for (double& r : other.radius) r *= 0.99;
+  generate::Shaker d(other, params);
+  std::stringstream again;
+  b.save_state(again);
+  EXPECT_THROW(d.load_state(again), InputError);
 }

@@ -21,7 +21,7 @@ namespace packlab::cli {
 std::string scrm_config_reference() {
   io::ScrmOptions o;
   LsRunOptions run;
-  return io::scrm_options(o).append(rdf_output_options("generate scrm", run.rdf)).markdown();
+  return ls_run_schema(io::scrm_options(o), run, false).markdown();
 }
 
 void add_generate_scrm(CLI::App& generate) {
