@@ -1,4 +1,4 @@
-// --resume of generate fba, generate ls and shake (cli/checkpoint.hpp): a run killed with
+// --resume of generate fba, generate ls, generate scrm and shake (cli/checkpoint.hpp): a run killed with
 // SIGKILL once it has written a checkpoint and resumed gives the packing of an uninterrupted
 // run bit for bit; a damaged checkpoint, a missing one and a changed setting are refused with
 // exit code 2 and one message.
@@ -64,6 +64,12 @@ TEST(ResumeCli, GenerateFbaKilledAndResumedEqualsUninterruptedRun) {
 TEST(ResumeCli, GenerateLsKilledAndResumedEqualsUninterruptedRun) {
   TempDir dir("resume-ls");
   expect_resumed_run_equals_straight_run("generate ls", "--phi 0.55 --particles 300 --growth-rate 0.1 --seed 3", dir);
+}
+
+TEST(ResumeCli, GenerateScrmKilledAndResumedEqualsUninterruptedRun) {
+  TempDir dir("resume-scrm");
+  expect_resumed_run_equals_straight_run(
+      "generate scrm", "--phi 0.5 --particles 300 --growth-rate 0.1 --final-shakes 4 --adaptive --seed 2", dir);
 }
 
 TEST(ResumeCli, ShakeKilledAndResumedEqualsUninterruptedRun) {

@@ -11,6 +11,7 @@
 #include "packlab/generate/lattice.hpp"
 #include "packlab/generate/ls.hpp"
 #include "packlab/generate/overlap_check.hpp"
+#include "packlab/generate/scrm.hpp"
 #include "packlab/generate/shake.hpp"
 
 using namespace packlab;
@@ -155,4 +156,48 @@ TEST(Shake, StateSavedBetweenSweepsResumesBitForBit) {
   std::stringstream again;
   b.save_state(again);
   EXPECT_THROW(d.load_state(again), InputError);
+}
+
+// SCRM saved after every step (LS segments with their shakes, final shakes) and loaded with the
+// generator's state ends with the packing of the uninterrupted run, bit for bit.
+TEST(Scrm, StateSavedBetweenStepsResumesBitForBit) {
+  generate::ScrmParams params;
+  params.ls.growth_rate = 0.1;
+  params.ls.target_volume_fraction = 0.5;
+  params.blocks_per_cycle = 2;
+  params.final_shakes = 3;
+  params.shake.adaptive = true;
+  const auto start = [&](Random& rng) {
+    const generate::LsStart s = generate::make_ls_start(150, {}, 0.5, 0.5, rng);
+    return generate::LsSimulation(s.box, s.points, s.unit_radius, params.ls, rng);
+  };
+  Random rng_straight(6);
+  generate::LsSimulation sim = start(rng_straight);
+  const generate::ScrmResult straight = generate::run_scrm(sim, params, rng_straight);
+  ASSERT_GT(straight.cycles, 2);
+
+  // Stop after every step count in turn: during the growth, during and after the final shakes.
+  long steps = 0;
+  {
+    Random rng(6);
+    generate::ScrmRun count(start(rng), params);
+    while (count.step(rng)) ++steps;
+  }
+  for (long stop : {1L, steps - 2, steps - 1, steps, steps + 1}) {
+    Random rng(6);
+    generate::ScrmRun first(start(rng), params);
+    for (long k = 0; k < stop; ++k) first.step(rng);
+    std::stringstream saved;
+    first.save_state(saved);
+    binary::write_random(saved, rng);
+    Random rng2(1);
+    generate::ScrmRun second = generate::ScrmRun::load_state(saved, params);
+    binary::read_random(saved, rng2);
+    while (second.step(rng2)) {
+    }
+    const generate::ScrmResult r = second.result();
+    EXPECT_EQ(r.packing.position, straight.packing.position) << "stopped after step " << stop;
+    EXPECT_EQ(r.cycles, straight.cycles);
+    EXPECT_EQ(r.shake.moves, straight.shake.moves);
+  }
 }
