@@ -92,13 +92,7 @@ void ScrmRun::save_state(std::ostream& out) const {
   binary::write(out, static_cast<std::int32_t>(phase_));
   binary::write(out, cycles_);
   binary::write(out, ls_);
-  binary::write(out, total_.sweeps);
-  binary::write(out, total_.visits);
-  binary::write(out, total_.trials);
-  binary::write(out, total_.moves);
-  binary::write(out, total_.mean_step);
-  binary::write(out, total_.seconds);
-  binary::write_vector(out, total_.window);
+  write_shake_stats(out, total_);
   binary::write(out, static_cast<std::uint8_t>(final_shaker_ != nullptr));
   if (final_shaker_) final_shaker_->save_state(out);  // the shaken packing
 }
@@ -111,14 +105,7 @@ ScrmRun ScrmRun::load_state(std::istream& in, const ScrmParams& params) {
   run.phase_ = static_cast<Phase>(phase);
   binary::read(in, run.cycles_, "cycles");
   binary::read(in, run.ls_, "LS status");
-  ShakeStats& t = run.total_;
-  binary::read(in, t.sweeps, "sweeps");
-  binary::read(in, t.visits, "visits");
-  binary::read(in, t.trials, "trials");
-  binary::read(in, t.moves, "moves");
-  binary::read(in, t.mean_step, "mean step");
-  binary::read(in, t.seconds, "seconds");
-  binary::read_vector(in, t.window, "windows", 64);
+  run.total_ = read_shake_stats(in);
   std::uint8_t shaking = 0;
   binary::read(in, shaking, "final shakes flag");
   // The packing of the last LS segment follows from the simulation's state; the final shakes

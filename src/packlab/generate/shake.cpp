@@ -71,18 +71,34 @@ void Shaker::fill_cells() {
   }
 }
 
+void write_shake_stats(std::ostream& out, const ShakeStats& stats) {
+  binary::write(out, stats.sweeps);
+  binary::write(out, stats.visits);
+  binary::write(out, stats.trials);
+  binary::write(out, stats.moves);
+  binary::write(out, stats.mean_step);
+  binary::write(out, stats.seconds);
+  binary::write_vector(out, stats.window);
+}
+
+ShakeStats read_shake_stats(std::istream& in) {
+  ShakeStats stats;
+  binary::read(in, stats.sweeps, "sweeps");
+  binary::read(in, stats.visits, "visits");
+  binary::read(in, stats.trials, "trials");
+  binary::read(in, stats.moves, "moves");
+  binary::read(in, stats.mean_step, "mean step");
+  binary::read(in, stats.seconds, "seconds");
+  binary::read_vector(in, stats.window, "windows");
+  return stats;
+}
+
 void Shaker::save_state(std::ostream& out) const {
   binary::write(out, p_.box.lo);
   binary::write(out, p_.box.length);
   binary::write_vector(out, p_.radius);
   binary::write_vector(out, p_.position);
-  binary::write(out, stats_.sweeps);
-  binary::write(out, stats_.visits);
-  binary::write(out, stats_.trials);
-  binary::write(out, stats_.moves);
-  binary::write(out, stats_.mean_step);
-  binary::write(out, stats_.seconds);
-  binary::write_vector(out, stats_.window);
+  write_shake_stats(out, stats_);
   binary::write(out, step_sum_);
 }
 
@@ -96,14 +112,7 @@ void Shaker::load_state(std::istream& in) {
   if (lo != p_.box.lo || length != p_.box.length || radius != p_.radius)
     fail_input("the saved shaking is of another packing (box or radii differ from the input file)");
   binary::read_vector(in, position, "positions");
-  ShakeStats stats;
-  binary::read(in, stats.sweeps, "sweeps");
-  binary::read(in, stats.visits, "visits");
-  binary::read(in, stats.trials, "trials");
-  binary::read(in, stats.moves, "moves");
-  binary::read(in, stats.mean_step, "mean step");
-  binary::read(in, stats.seconds, "seconds");
-  binary::read_vector(in, stats.window, "windows");
+  ShakeStats stats = read_shake_stats(in);
   binary::read(in, step_sum_, "step sum");
   if (position.size() != p_.size() || stats.window.size() != stats_.window.size() || stats.sweeps < 0)
     fail_input("checkpoint is damaged: shaking state out of range");

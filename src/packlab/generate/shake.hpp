@@ -45,6 +45,10 @@ struct ShakeStats {
   std::vector<double> window;  // final R_sh per class (largest class first)
 };
 
+// The statistics in a checkpoint (binary, InputError when truncated).
+void write_shake_stats(std::ostream& out, const ShakeStats& stats);
+ShakeStats read_shake_stats(std::istream& in);
+
 class Shaker {
  public:
   // Works on `packing` in place (kept by reference); throws InputError if spheres overlap by
