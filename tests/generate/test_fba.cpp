@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <numbers>
+#include <sstream>
 #include <string>
 
 #include "packlab/core/error.hpp"
@@ -166,4 +167,33 @@ TEST(Fba, RandomPoresDoNotOverlap) {
   EXPECT_LE(brute_force_max_overlap(p), 1e-3);
   o.count = 80;  // fraction 0.65
   EXPECT_NE(error_of([&] { random_pores(region, o, rng); }).find("< 0.6"), std::string::npos);
+}
+
+// A checkpoint is the whole state: stopped after 37 iterations, saved, loaded (with another
+// thread count) and run on, the packing is the uninterrupted one bit for bit.
+TEST(Fba, SavedAndLoadedRunEqualsTheUninterruptedOne) {
+  FbaParams params;
+  params.threads = 1;
+  const Box box = cube(1.0, {true, true, false});
+  const std::vector<double> rho = {1.0, 0.5, 1.0, 0.5, 0.7, 1.0};
+  std::vector<double> radii;
+  for (int k = 0; k < 50; ++k) radii.insert(radii.end(), rho.begin(), rho.end());
+  Random rng_straight(11);
+  const FbaResult straight = fba_pack(box, radii, params, rng_straight, 5);
+  ASSERT_GT(straight.status.iteration, 60);
+
+  Random rng(11);
+  FbaRun first(box, radii, params, rng, 5);
+  EXPECT_FALSE(first.run(37));
+  std::stringstream saved;
+  first.save_state(saved);
+  FbaRun second = FbaRun::load_state(saved, 2);
+  EXPECT_TRUE(second.run());
+  const FbaResult resumed = second.result();
+  EXPECT_EQ(resumed.packing.position, straight.packing.position);
+  EXPECT_EQ(resumed.status.iteration, straight.status.iteration);
+  EXPECT_EQ(resumed.status.max_overlap, straight.status.max_overlap);
+  ASSERT_EQ(resumed.history.size(), straight.history.size());
+  for (std::size_t k = 0; k < straight.history.size(); ++k)
+    EXPECT_EQ(resumed.history[k].outer_scale, straight.history[k].outer_scale) << k;
 }

@@ -8,6 +8,7 @@
 #include <limits>
 #include <nlohmann/json.hpp>
 #include <numbers>
+#include <sstream>
 
 #include "../cli/cli_runner.hpp"
 #include "packlab/core/error.hpp"
@@ -258,4 +259,39 @@ TEST(LsCli, GenerateLsScrmAndShakeWriteTheirFolders) {
   EXPECT_NE(bad.output.find("target_volume_fraction = 1.5"), std::string::npos) << bad.output;
   const auto bad2 = test::run_packlab("generate ls --phi 0.5 --sizes 1,0.3 --number-fractions 1 --out " + dir.file("bad"));
   EXPECT_EQ(bad2.exit_code, 2) << bad2.output;
+}
+
+// A checkpoint between two blocks is the whole state: the run saved after its third block and
+// loaded goes on to the very packing of the uninterrupted run.
+TEST(Ls, StateSavedBetweenBlocksResumesBitForBit) {
+  const auto start = [](Random& rng) {
+    generate::LsParams p;
+    p.growth_rate = 0.1;
+    p.target_volume_fraction = 0.55;
+    return make_sim(200, {{1.0, 0.6}, {0.5, 0.5}, false}, 0.55, p, rng);
+  };
+  Random rng_straight(4);
+  LsSimulation straight = start(rng_straight);
+  const generate::LsStatus done = straight.run();
+  ASSERT_GT(done.blocks, 4);
+  const Packing expected = straight.packing();
+
+  Random rng(4);
+  LsSimulation first = start(rng);
+  std::stringstream saved;
+  first.run([&](const generate::LsStatus& s) {
+    if (s.blocks == 3) first.save_state(saved);
+  });
+  LsSimulation resumed = LsSimulation::load_state(saved);
+  const generate::LsStatus again = resumed.run();
+  EXPECT_EQ(again.blocks, done.blocks);
+  EXPECT_EQ(again.collisions, done.collisions);
+  const Packing got = resumed.packing();
+  EXPECT_EQ(got.position, expected.position);
+  EXPECT_EQ(got.radius, expected.radius);
+  // A stopped simulation saved at its end stays stopped.
+  std::stringstream end;
+  resumed.save_state(end);
+  LsSimulation finished = LsSimulation::load_state(end);
+  EXPECT_EQ(finished.run().blocks, done.blocks);
 }

@@ -3,12 +3,15 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <sstream>
 
 #include "packlab/analyze/rdf.hpp"
+#include "packlab/core/binary_io.hpp"
 #include "packlab/core/error.hpp"
 #include "packlab/generate/lattice.hpp"
 #include "packlab/generate/ls.hpp"
 #include "packlab/generate/overlap_check.hpp"
+#include "packlab/generate/scrm.hpp"
 #include "packlab/generate/shake.hpp"
 
 using namespace packlab;
@@ -115,4 +118,86 @@ TEST(Shake, OverlappingPackingIsRejected) {
   generate::ShakeParams sp;
   sp.window = -1;
   EXPECT_THROW(sp.validate(), InputError);
+}
+
+// Saved between two global shakes with the generator's state, a shaker of the same input
+// goes on exactly as the uninterrupted one.
+TEST(Shake, StateSavedBetweenSweepsResumesBitForBit) {
+  const Packing input = ls_packing(150, 0.45, 0.1, 8);
+  generate::ShakeParams params;
+  params.adaptive = true;
+  Packing straight = input;
+  Random rng_straight(5);
+  generate::Shaker a(straight, params);
+  a.sweeps(5, rng_straight);
+
+  Packing first = input;
+  Random rng(5);
+  generate::Shaker b(first, params);
+  b.sweeps(2, rng);
+  std::stringstream saved;
+  b.save_state(saved);
+  binary::write_random(saved, rng);
+
+  Packing second = input;
+  Random rng2(99);
+  generate::Shaker c(second, params);
+  c.load_state(saved);
+  binary::read_random(saved, rng2);
+  c.sweeps(3, rng2);
+  EXPECT_EQ(second.position, straight.position);
+  EXPECT_EQ(c.stats().moves, a.stats().moves);
+  EXPECT_EQ(c.stats().window, a.stats().window);
+
+  // The state of another packing is refused.
+  Packing other = ls_packing(150, 0.45, 0.1, 9);
+  for (double& r : other.radius) r *= 0.99;
+  generate::Shaker d(other, params);
+  std::stringstream again;
+  b.save_state(again);
+  EXPECT_THROW(d.load_state(again), InputError);
+}
+
+// SCRM saved after every step (LS segments with their shakes, final shakes) and loaded with the
+// generator's state ends with the packing of the uninterrupted run, bit for bit.
+TEST(Scrm, StateSavedBetweenStepsResumesBitForBit) {
+  generate::ScrmParams params;
+  params.ls.growth_rate = 0.1;
+  params.ls.target_volume_fraction = 0.5;
+  params.blocks_per_cycle = 2;
+  params.final_shakes = 3;
+  params.shake.adaptive = true;
+  const auto start = [&](Random& rng) {
+    const generate::LsStart s = generate::make_ls_start(150, {}, 0.5, 0.5, rng);
+    return generate::LsSimulation(s.box, s.points, s.unit_radius, params.ls, rng);
+  };
+  Random rng_straight(6);
+  generate::LsSimulation sim = start(rng_straight);
+  const generate::ScrmResult straight = generate::run_scrm(sim, params, rng_straight);
+  ASSERT_GT(straight.cycles, 2);
+
+  // Stop after every step count in turn: during the growth, during and after the final shakes.
+  long steps = 0;
+  {
+    Random rng(6);
+    generate::ScrmRun count(start(rng), params);
+    while (count.step(rng)) ++steps;
+  }
+  for (long stop : {1L, steps - 2, steps - 1, steps, steps + 1}) {
+    Random rng(6);
+    generate::ScrmRun first(start(rng), params);
+    for (long k = 0; k < stop; ++k) first.step(rng);
+    std::stringstream saved;
+    first.save_state(saved);
+    binary::write_random(saved, rng);
+    Random rng2(1);
+    generate::ScrmRun second = generate::ScrmRun::load_state(saved, params);
+    binary::read_random(saved, rng2);
+    while (second.step(rng2)) {
+    }
+    const generate::ScrmResult r = second.result();
+    EXPECT_EQ(r.packing.position, straight.packing.position) << "stopped after step " << stop;
+    EXPECT_EQ(r.cycles, straight.cycles);
+    EXPECT_EQ(r.shake.moves, straight.shake.moves);
+  }
 }

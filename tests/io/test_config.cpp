@@ -171,3 +171,26 @@ TEST(ConfigSchema, CheckedInReferenceMatchesTheBinary) {
   const std::string checked_in((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
   EXPECT_EQ(checked_in, result.output) << "run `make docs` to regenerate docs/config-reference.md";
 }
+
+// values() and set_values(): a run's settings as its checkpoint keeps them, read back exactly.
+TEST(ConfigSchema, ValuesRoundTripExactlyAndForeignKeysAreRefused) {
+  Settings a;
+  a.stiffness = 0.1 + 0.2;  // not a short decimal
+  a.steps = 123456789012;
+  a.seed = 42;
+  a.plots = false;
+  a.law = "hertz";
+  a.damping_a = a.damping_b = 1.0 / 3.0;
+  const nlohmann::json saved = nlohmann::json::parse(schema(a).values().dump());
+  Settings b;
+  schema(b).set_values(saved, "checkpoint");
+  EXPECT_EQ(b.stiffness, a.stiffness);
+  EXPECT_EQ(b.steps, a.steps);
+  EXPECT_EQ(b.seed, a.seed);
+  EXPECT_EQ(b.plots, a.plots);
+  EXPECT_EQ(b.law, a.law);
+  EXPECT_EQ(b.damping_b, a.damping_b);
+  EXPECT_THROW(schema(b).set_values(nlohmann::json{{"no_such_key", 1}}, "checkpoint"), InputError);
+  EXPECT_THROW(schema(b).set_values(nlohmann::json{{"plots", "yes"}}, "checkpoint"), InputError);
+  EXPECT_THROW(schema(b).set_values(nlohmann::json::array(), "checkpoint"), InputError);
+}

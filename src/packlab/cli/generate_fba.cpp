@@ -1,20 +1,24 @@
 // packlab generate fba [--config FILE.toml] (--particles N [--aspect 1,1,1] | --box LX,LY,LZ) [--diameter D]
 //   [--porosity 0.38] [--sizes 1,0.5 (--number-fractions ... | --volume-fractions ...)] [--periodic xy]
 //   [--tolerance 1e-3] [--shrink-rate 0.01] [--step 1] [--max-iterations N] [--history-every K] [--seed S]
-//   [--threads T] --out DIR
+//   [--threads T] [--checkpoint-seconds S] --out DIR
+// packlab generate fba --resume DIR [--threads T]
 // Force-biased algorithm (generate/fba.hpp, bpm-inverse-opals §2.1): dense random packing to a
 // target porosity, periodic along the given axes (walls on the others). Writes DIR/packing.xyz,
-// packing.vtu, fba_log.csv (convergence), fba.png and report.json. Exit code 2 (after writing
-// the files) when the tolerance was not reached within --max-iterations.
+// packing.vtu, fba_log.csv (convergence), fba.png, report.json and checkpoint.bin (every
+// --checkpoint-seconds and at the end; --resume DIR goes on from it, cli/checkpoint.hpp). Exit
+// code 2 (after writing the files) when the tolerance was not reached within --max-iterations.
 #include <fmt/format.h>
 
 #include <chrono>
 #include <cmath>
 #include <memory>
 #include <numbers>
+#include <optional>
 #include <sstream>
 
 #include "packlab/analyze/coordination.hpp"
+#include "packlab/cli/checkpoint.hpp"
 #include "packlab/cli/commands.hpp"
 #include "packlab/cli/options.hpp"
 #include "packlab/core/error.hpp"
@@ -32,7 +36,8 @@ void add_generate_fba(CLI::App& generate) {
   add_option_command(
       generate, "fba",
       "Force-biased algorithm: dense random sphere packing to a target porosity (0.38 in bpm-inverse-opals)",
-      io::fba_options, {.output = "Output folder", .plots = true}, [](const OptionCommand<io::FbaOptions>& c) {
+      io::fba_options, {.output = "Output folder", .plots = true, .resumable = true},
+      [](OptionCommand<io::FbaOptions>& c) {
         const auto t0 = std::chrono::steady_clock::now();
         const io::FbaOptions& o = c.settings;
         const io::FbaOptions::Setup setup = o.setup();
@@ -40,15 +45,27 @@ void add_generate_fba(CLI::App& generate) {
         const long n = setup.count;
         const generate::SizeClasses& classes = setup.classes;
         io::ensure_directory(c.out);
-        Random rng(o.seed);
-        std::vector<double> rho = generate::fba_class_radii(n, classes, rng);
+        std::optional<generate::FbaRun> fba;
+        if (c.resumed) {
+          fba.emplace(generate::FbaRun::load_state(c.resumed->state, o.fba.threads));
+        } else {
+          Random rng(o.seed);
+          fba.emplace(box, generate::fba_class_radii(n, classes, rng), o.fba, rng, o.history_every);
+        }
         Progress progress("generate fba", 0, !c.quiet);
-        const generate::FbaResult r =
-            generate::fba_pack(box, rho, o.fba, rng, o.history_every, [&](const generate::FbaStatus& s) {
-              progress.update(s.iteration, fmt::format("max overlap {:.3g}, nominal/target diameter {:.5f}",
-                                                       s.max_overlap, s.outer_scale));
-            });
+        const auto on_progress = [&](const generate::FbaStatus& s) {
+          progress.update(s.iteration, fmt::format("max overlap {:.3g}, nominal/target diameter {:.5f}", s.max_overlap,
+                                                   s.outer_scale));
+        };
+        // Pieces of about 1e5 particle-iterations (milliseconds); a checkpoint may follow each
+        // (a consistent state, between two iterations).
+        const long chunk = std::max(1L, 100000L / n);
+        CheckpointWriter checkpoint(c.out, c.flags->schema(), c.in, o.checkpoint_seconds);
+        const auto save = [&](std::ostream& out) { fba->save_state(out); };
+        while (!fba->run(chunk, on_progress)) checkpoint.write_if_due(save);
+        checkpoint.write(save);
         progress.finish();
+        const generate::FbaResult r = fba->result();
         const Packing& packing = r.packing;
         const std::filesystem::path dir(c.out);
         io::WriteOptions w;

@@ -1,17 +1,21 @@
 // packlab generate ls [--config FILE.toml] [--phi X] --particles N [--sizes 1,0.313 (--number-fractions ... |
 //   --volume-fractions ...)] [--radius R] [--growth-rate G] [--max-pressure P] [--events-per-block E] [--seed S]
-//   [--rdf-dr X] [--rdf-r-max X] --out DIR
+//   [--rdf-dr X] [--rdf-r-max X] [--checkpoint-seconds S] --out DIR
+// packlab generate ls --resume DIR
 // Lubachevsky-Stillinger growth from random points to the volume fraction X, or to jamming
 // without --phi. Writes DIR/packing.xyz, .vtu, ls_log.csv, rdf.csv (+ rdf_partial.csv),
-// windows.csv, PNG plots and report.json.
+// windows.csv, PNG plots, report.json and checkpoint.bin (between two blocks, every
+// --checkpoint-seconds and at the end; --resume DIR goes on from it, cli/checkpoint.hpp).
 #include <fmt/format.h>
 
 #include <chrono>
 #include <memory>
+#include <optional>
 #include <sstream>
 
 #include "packlab/cli/commands.hpp"
 #include "packlab/cli/scrm_common.hpp"
+#include "packlab/core/binary_io.hpp"
 #include "packlab/core/error.hpp"
 #include "packlab/core/progress.hpp"
 #include "packlab/generate/ls.hpp"
@@ -38,16 +42,34 @@ nlohmann::json ls_parameters(const io::LsOptions& o) {
           {"seed", o.seed}};
 }
 
-void add_ls_run_options(CLI::App& cmd, LsRunOptions& run, const io::ConfigSchema& method) {
+io::ConfigSchema ls_run_schema(const io::ConfigSchema& method, LsRunOptions& run, bool resumable) {
   io::ConfigSchema all = method;
   all.append(rdf_output_options(method.command(), run.rdf));
-  run.flags = std::make_unique<OptionFlags>(&cmd, std::move(all));
-  cmd.add_option("--out", run.out, "Output folder")->required();
+  if (resumable) io::add_checkpoint_seconds(all, run.checkpoint_seconds);
+  return all;
+}
+
+void add_ls_run_options(CLI::App& cmd, LsRunOptions& run, const io::ConfigSchema& method, bool resumable) {
+  run.flags = std::make_unique<OptionFlags>(&cmd, ls_run_schema(method, run, resumable));
+  CLI::Option* out = cmd.add_option("--out", run.out, "Output folder");
+  if (resumable)
+    cmd.add_option("--resume", run.resume,
+                   "Continue the run whose checkpoint is in this folder, with its saved settings");
+  else
+    out->required();
   cmd.add_flag("--no-plots", run.no_plots, "Do not write PNG plots");
   cmd.add_flag("--quiet", run.quiet, "No progress output");
 }
 
-void resolve_ls_run_options(LsRunOptions& run) { run.flags->load(); }
+void resolve_ls_run_options(LsRunOptions& run) {
+  if (!run.resume.empty()) {
+    run.resumed.emplace(resume_saved_run(*run.flags, run.resume, "", run.out));
+    run.out = run.resume;
+    return;
+  }
+  if (run.out.empty()) fail_input("--out: required (the output folder), or --resume DIR");
+  run.flags->load();
+}
 
 io::ConfigSchema rdf_output_options(const std::string& command, analyze::RdfParams& rdf) {
   io::ConfigSchema schema(command);
@@ -79,7 +101,7 @@ nlohmann::json rdf_of(const Packing& packing, const std::filesystem::path& dir, 
 std::string ls_config_reference() {
   io::LsOptions o;
   LsRunOptions run;
-  return io::ls_options(o).append(rdf_output_options("generate ls", run.rdf)).markdown();
+  return ls_run_schema(io::ls_options(o), run, true).markdown();
 }
 
 void add_generate_ls(CLI::App& generate) {
@@ -90,12 +112,12 @@ void add_generate_ls(CLI::App& generate) {
   auto opt = std::make_shared<Options>();
   auto* cmd = generate.add_subcommand(
       "ls", "Lubachevsky-Stillinger growth of hard spheres (event-driven MD) to a volume fraction or to jamming");
-  add_ls_run_options(*cmd, opt->run, io::ls_options(opt->ls));
+  add_ls_run_options(*cmd, opt->run, io::ls_options(opt->ls), true);
   cmd->callback([opt] {
     const auto t0 = std::chrono::steady_clock::now();
     resolve_ls_run_options(opt->run);
     const io::LsOptions& o = opt->ls;
-    const LsRunOptions& run = opt->run;
+    LsRunOptions& run = opt->run;
     const generate::SizeClasses classes = o.classes();
     generate::LsParams p = o.ls;
     p.target_volume_fraction = o.phi;
@@ -103,27 +125,41 @@ void add_generate_ls(CLI::App& generate) {
     run.rdf.validate();
     run.flags->schema().validate();
     io::ensure_directory(run.out);
-    Random rng(o.seed);
-    const generate::LsStart start =
-        generate::make_ls_start(o.particles, classes, o.radius, o.phi > 0 ? o.phi : 0.64, rng);
-    generate::LsSimulation sim(start.box, start.points, start.unit_radius, p, rng);
+    // The simulation and its log so far: new, or as saved between two blocks.
+    std::optional<generate::LsSimulation> sim;
+    std::string log;
+    if (run.resumed) {
+      sim.emplace(generate::LsSimulation::load_state(run.resumed->state));
+      binary::read_string(run.resumed->state, log, "log", 1ULL << 32);
+    } else {
+      Random rng(o.seed);
+      const generate::LsStart start =
+          generate::make_ls_start(o.particles, classes, o.radius, o.phi > 0 ? o.phi : 0.64, rng);
+      sim.emplace(start.box, start.points, start.unit_radius, p, rng);
+      log = "block,time,volume_fraction,reduced_pressure,collisions,transfers,seconds\n";
+    }
+    CheckpointWriter checkpoint(run.out, run.flags->schema(), "", run.checkpoint_seconds);
+    const auto save = [&](std::ostream& out) {
+      sim->save_state(out);
+      binary::write_string(out, log);
+    };
     Progress progress("generate ls", 0, !run.quiet);
-    std::ostringstream log;
-    log << "block,time,volume_fraction,reduced_pressure,collisions,transfers,seconds\n";
-    const generate::LsStatus st = sim.run([&](const generate::LsStatus& s) {
-      log << fmt::format("{},{:.10g},{:.10g},{:.6g},{},{},{:.4f}\n", s.blocks, s.time, s.volume_fraction,
+    const generate::LsStatus st = sim->run([&](const generate::LsStatus& s) {
+      log += fmt::format("{},{:.10g},{:.10g},{:.6g},{},{},{:.4f}\n", s.blocks, s.time, s.volume_fraction,
                          s.reduced_pressure, s.collisions, s.transfers, s.seconds);
       progress.update(s.blocks, fmt::format("phi {:.5f}, reduced pressure {:.3g}, {:.3g} collisions", s.volume_fraction,
                                             s.reduced_pressure, static_cast<double>(s.collisions)));
+      checkpoint.write_if_due(save);  // between two blocks: a consistent state
     });
+    checkpoint.write(save);
     progress.finish();
-    const Packing packing = sim.packing();
+    const Packing packing = sim->packing();
     const std::string comment =
         fmt::format("packlab {} generate ls phi={:.8f} N={} growth_rate={:g} seed={} stop={}", io::version(),
                     packing.volume_fraction(), packing.size(), p.growth_rate, o.seed, generate::ls_stop_name(st.stop));
     const std::filesystem::path dir(run.out);
     write_packing_outputs(packing, dir, comment);
-    io::write_text_atomically(dir / "ls_log.csv", log.str());
+    io::write_text_atomically(dir / "ls_log.csv", log);
     io::PlotOptions po;
     po.enabled = !run.no_plots;
     io::make_plot("ls", {(dir / "ls_log.csv").string()}, dir / "ls.png", po);
@@ -143,7 +179,7 @@ void add_generate_ls(CLI::App& generate) {
                          {"events_per_second", static_cast<double>(st.events()) / st.seconds},
                          {"collisions_per_cpu_second", static_cast<double>(st.collisions) / st.cpu_seconds},
                          {"events_per_cpu_second", static_cast<double>(st.events()) / st.cpu_seconds},
-                         {"overlap_correction", sim.overlap_correction()},
+                         {"overlap_correction", sim->overlap_correction()},
                          {"min_contact_ratio", generate::min_contact_ratio(packing)}};
     report["results"]["rdf"] = rdf_of(packing, dir, run.rdf.dr, run.rdf.r_max, !run.no_plots);
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();

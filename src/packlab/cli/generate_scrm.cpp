@@ -1,15 +1,20 @@
 // packlab generate scrm [--config FILE.toml] --phi X --particles N [sizes as generate ls] [--growth-rate G]
 //   [--window 0.02] [--max-trials 150] [--adaptive] [--blocks-per-cycle 5] [--shakes-per-cycle 1]
-//   [--final-shakes 10] [--seed S] --out DIR
+//   [--final-shakes 10] [--seed S] [--checkpoint-seconds S] --out DIR
+// packlab generate scrm --resume DIR
 // Shaking collective rearrangement model: LS growth alternated with global shakes, then final
-// shakes at X. Writes the same files as generate ls.
+// shakes at X. Writes the same files as generate ls, and checkpoint.bin (after every LS segment
+// with its shakes and every final shake, every --checkpoint-seconds and at the end; --resume
+// DIR goes on from it, cli/checkpoint.hpp).
 #include <fmt/format.h>
 
 #include <chrono>
 #include <memory>
+#include <optional>
 
 #include "packlab/cli/commands.hpp"
 #include "packlab/cli/scrm_common.hpp"
+#include "packlab/core/binary_io.hpp"
 #include "packlab/core/progress.hpp"
 #include "packlab/generate/overlap_check.hpp"
 #include "packlab/generate/scrm.hpp"
@@ -21,7 +26,7 @@ namespace packlab::cli {
 std::string scrm_config_reference() {
   io::ScrmOptions o;
   LsRunOptions run;
-  return io::scrm_options(o).append(rdf_output_options("generate scrm", run.rdf)).markdown();
+  return ls_run_schema(io::scrm_options(o), run, true).markdown();
 }
 
 void add_generate_scrm(CLI::App& generate) {
@@ -32,25 +37,38 @@ void add_generate_scrm(CLI::App& generate) {
   auto opt = std::make_shared<Options>();
   auto* cmd = generate.add_subcommand(
       "scrm", "Shaking collective rearrangement: LS growth alternated with Monte-Carlo shaking, then final shakes");
-  add_ls_run_options(*cmd, opt->run, io::scrm_options(opt->scrm));
+  add_ls_run_options(*cmd, opt->run, io::scrm_options(opt->scrm), true);
   cmd->callback([opt] {
     const auto t0 = std::chrono::steady_clock::now();
     resolve_ls_run_options(opt->run);
     const io::ScrmOptions& o = opt->scrm;
-    const LsRunOptions& run = opt->run;
+    LsRunOptions& run = opt->run;
     const generate::ScrmParams sp = o.params();
     run.flags->schema().validate();
     io::ensure_directory(run.out);
+    // The run and its generator: new, or as saved between two steps.
     Random rng(o.seed);
-    const generate::LsStart start = generate::make_ls_start(o.particles, o.classes(), o.radius, o.phi, rng);
-    generate::LsSimulation sim(start.box, start.points, start.unit_radius, sp.ls, rng);
+    std::optional<generate::ScrmRun> scrm;
+    if (run.resumed) {
+      scrm.emplace(generate::ScrmRun::load_state(run.resumed->state, sp));
+      binary::read_random(run.resumed->state, rng);
+    } else {
+      const generate::LsStart start = generate::make_ls_start(o.particles, o.classes(), o.radius, o.phi, rng);
+      scrm.emplace(generate::LsSimulation(start.box, start.points, start.unit_radius, sp.ls, rng), sp);
+    }
+    CheckpointWriter checkpoint(run.out, run.flags->schema(), "", run.checkpoint_seconds);
+    const auto save = [&](std::ostream& out) {
+      scrm->save_state(out);
+      binary::write_random(out, rng);
+    };
     Progress progress("generate scrm", 0, !run.quiet);
-    const generate::ScrmResult r =
-        run_scrm(sim, sp, rng, [&](const generate::LsStatus& ls, const generate::ShakeStats& s) {
-          progress.update(ls.blocks + s.sweeps,
-                          fmt::format("phi {:.5f}, {} global shakes", ls.volume_fraction, s.sweeps));
-        });
+    const auto on_progress = [&](const generate::LsStatus& ls, const generate::ShakeStats& s) {
+      progress.update(ls.blocks + s.sweeps, fmt::format("phi {:.5f}, {} global shakes", ls.volume_fraction, s.sweeps));
+    };
+    while (scrm->step(rng, on_progress)) checkpoint.write_if_due(save);
+    checkpoint.write(save);
     progress.finish();
+    const generate::ScrmResult r = scrm->result();
     const std::filesystem::path dir(run.out);
     write_packing_outputs(r.packing, dir,
                           fmt::format("packlab {} generate scrm phi={:.8f} N={} growth_rate={:g} window={:g} "

@@ -56,13 +56,9 @@ io::ConfigSchema run_settings_options(RunSettings& s) {
                "Save the structural packing before every k-th increment (0 = never)")
       .range(ranges::non_negative)
       .alias("snapshot_every")
-      .command_only()
-      .number("output.checkpoint_seconds", s.checkpoint_seconds, "Wall-clock seconds between checkpoints")
-      .unit("s")
-      .range(ranges::positive)
-      .alias("checkpoint_seconds")
-      .command_only()
-      .boolean("output.plots", s.plots, "Draw cn_curve.png")
+      .command_only();
+  io::add_checkpoint_seconds(schema, s.checkpoint_seconds);
+  schema.boolean("output.plots", s.plots, "Draw cn_curve.png")
       .command_only()
       .number("analysis.window_widths", s.window_widths, "Inflection fit window, in logistic widths")
       .range(ranges::positive)

@@ -6,9 +6,12 @@
 
 #include <CLI/CLI.hpp>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
+#include "packlab/cli/checkpoint.hpp"
+#include "packlab/core/error.hpp"
 #include "packlab/io/config.hpp"
 
 namespace packlab::cli {
@@ -100,6 +103,11 @@ struct OptionCommand {
   std::string in, out;  // the input file (if the command takes one) and --out
   bool quiet = false, no_plots = false;
   std::unique_ptr<OptionFlags> flags;
+  // Resumable commands (CommandParts::resumable): --resume DIR. When given, the settings and
+  // `in` are those saved in DIR/checkpoint.bin, `out` is DIR and `resumed` holds the method's
+  // saved state (cli/checkpoint.hpp).
+  std::string resume;
+  std::optional<SavedRun> resumed;
 };
 
 // What a command adds around its option set, as the help texts of its arguments.
@@ -109,7 +117,14 @@ struct CommandParts {
   bool output_positional = false;  // OUT after IN instead of --out
   bool plots = false;              // --no-plots
   bool validate = true;            // check every option against its range before running
+  bool resumable = false;          // --resume DIR (cli/checkpoint.hpp); then input and --out are optional
 };
+
+// --resume DIR of a resumable command: refuses --config, every flag of the set but --threads,
+// an input file and an --out other than DIR; puts the saved settings into the set's targets,
+// then the --threads flag. Returns the saved run.
+SavedRun resume_saved_run(const OptionFlags& flags, const std::string& dir, const std::string& in,
+                          const std::string& out);
 
 // Adds subcommand `name` of `parent`: input, the option set `declare(settings)` with --config,
 // the output, --no-plots, --quiet. When the command runs, the file and then the flags are read
@@ -120,17 +135,35 @@ CLI::App* add_option_command(CLI::App& parent, const std::string& name, const st
                              io::ConfigSchema (*declare)(Settings&), const CommandParts& parts, Run run) {
   auto command = std::make_shared<OptionCommand<Settings>>();
   CLI::App* cmd = parent.add_subcommand(name, summary);
-  if (parts.input != nullptr) cmd->add_option("in", command->in, parts.input)->required();
+  const bool resumable = parts.resumable;
+  if (parts.input != nullptr) {
+    CLI::Option* in = cmd->add_option("in", command->in, parts.input);
+    if (!resumable) in->required();
+  }
   if (parts.output != nullptr && parts.output_positional)
     cmd->add_option("out", command->out, parts.output)->required();
   command->flags = std::make_unique<OptionFlags>(cmd, declare(command->settings));
-  if (parts.output != nullptr && !parts.output_positional)
-    cmd->add_option("--out", command->out, parts.output)->required();
+  if (parts.output != nullptr && !parts.output_positional) {
+    CLI::Option* out = cmd->add_option("--out", command->out, parts.output);
+    if (!resumable) out->required();
+  }
+  if (resumable)
+    cmd->add_option("--resume", command->resume,
+                    "Continue the run whose checkpoint is in this folder, with its saved settings (--threads may "
+                    "change; the result does not depend on it)");
   if (parts.plots) cmd->add_flag("--no-plots", command->no_plots, "Do not make PNG plots");
   cmd->add_flag("--quiet", command->quiet, "No progress output");
-  const bool validate = parts.validate;
-  cmd->callback([command, run, validate] {
-    command->flags->load();
+  const bool validate = parts.validate, takes_input = parts.input != nullptr;
+  cmd->callback([command, run, validate, resumable, takes_input] {
+    if (!command->resume.empty()) {
+      command->resumed.emplace(resume_saved_run(*command->flags, command->resume, command->in, command->out));
+      command->in = command->resumed->input;
+      command->out = command->resume;
+    } else {
+      if (resumable && takes_input && command->in.empty()) fail_input("the input file: required, or --resume DIR");
+      if (resumable && command->out.empty()) fail_input("--out: required (the output folder), or --resume DIR");
+      command->flags->load();
+    }
     if (validate) command->flags->schema().validate();
     run(*command);
   });

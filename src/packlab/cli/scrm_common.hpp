@@ -8,11 +8,13 @@
 
 #include <CLI/CLI.hpp>
 #include <memory>
+#include <optional>
 #include <string>
 
 #include "packlab/analyze/rdf.hpp"
 #include "packlab/core/packing.hpp"
 #include "packlab/generate/ls.hpp"
+#include "packlab/cli/checkpoint.hpp"
 #include "packlab/cli/options.hpp"
 #include "packlab/io/config.hpp"
 #include "packlab/io/options.hpp"
@@ -30,16 +32,24 @@ nlohmann::json write_rdf_outputs(const analyze::Rdf& rdf, const std::vector<doub
                                  const std::filesystem::path& dir, bool partial, bool plots);
 
 // The command's side of `generate ls` and `generate scrm` (the method's options are
-// io::ls_options / io::scrm_options): output folder, config file, the RDF of the result.
+// io::ls_options / io::scrm_options): output folder, config file, the RDF of the result and,
+// for a resumable command, the checkpoints (cli/checkpoint.hpp).
 struct LsRunOptions {
   std::string out;
   analyze::RdfParams rdf;
   bool no_plots = false, quiet = false;
   std::unique_ptr<OptionFlags> flags;
+  std::string resume;               // --resume DIR
+  double checkpoint_seconds = 120;  // output.checkpoint_seconds
+  std::optional<SavedRun> resumed;  // the saved run when resuming
 };
-// --config, the flags of `method` and of the RDF, --out, --no-plots, --quiet.
-void add_ls_run_options(CLI::App& cmd, LsRunOptions& run, const io::ConfigSchema& method);
-// Defaults, then the config file, then the flags.
+// The option set of the command: `method`, the RDF of the result and, when `resumable`,
+// output.checkpoint_seconds.
+io::ConfigSchema ls_run_schema(const io::ConfigSchema& method, LsRunOptions& run, bool resumable);
+// --config, the flags of ls_run_schema(), --out, --no-plots, --quiet and, when `resumable`,
+// --resume DIR.
+void add_ls_run_options(CLI::App& cmd, LsRunOptions& run, const io::ConfigSchema& method, bool resumable = false);
+// Defaults, then the config file, then the flags; or, with --resume DIR, the saved settings.
 void resolve_ls_run_options(LsRunOptions& run);
 // The report's parameters of an LS start (with the normalized number fractions and the counts).
 nlohmann::json ls_parameters(const io::LsOptions& o);

@@ -1,7 +1,10 @@
 // packlab shake IN [--config FILE.toml] --sweeps M [--window 0.02] [--max-trials 150] [--adaptive] [--seed S]
-//   [--rdf-dr X] [--rdf-r-max X] --out DIR
+//   [--rdf-dr X] [--rdf-r-max X] [--checkpoint-seconds S] --out DIR
+// packlab shake --resume DIR
 // Monte-Carlo shaking of any hard-sphere packing: M global shakes. Writes DIR/packing.xyz, .vtu,
-// the RDF tables and plots of the shaken packing and report.json (with the contact value before).
+// the RDF tables and plots of the shaken packing, report.json (with the contact value before)
+// and checkpoint.bin (between two global shakes, every --checkpoint-seconds and at the end;
+// --resume DIR goes on from it with the saved settings and the input file, cli/checkpoint.hpp).
 #include "packlab/generate/shake.hpp"
 
 #include <fmt/format.h>
@@ -9,9 +12,11 @@
 #include <chrono>
 #include <memory>
 
+#include "packlab/cli/checkpoint.hpp"
 #include "packlab/cli/commands.hpp"
 #include "packlab/cli/options.hpp"
 #include "packlab/cli/scrm_common.hpp"
+#include "packlab/core/binary_io.hpp"
 #include "packlab/core/error.hpp"
 #include "packlab/core/progress.hpp"
 #include "packlab/generate/overlap_check.hpp"
@@ -38,8 +43,8 @@ std::string shake_config_reference() { return option_reference(shake_schema); }
 void add_shake(CLI::App& app) {
   add_option_command(
       app, "shake", "Monte-Carlo shaking of a hard-sphere packing (global shakes)", shake_schema,
-      {.input = "Input packing (no overlaps)", .output = "Output folder", .plots = true},
-      [](const OptionCommand<ShakeRun>& c) {
+      {.input = "Input packing (no overlaps)", .output = "Output folder", .plots = true, .resumable = true},
+      [](OptionCommand<ShakeRun>& c) {
         const auto t0 = std::chrono::steady_clock::now();
         const ShakeRun& run = c.settings;
         run.o.shake.validate();
@@ -49,10 +54,23 @@ void add_shake(CLI::App& app) {
         before.compute(packing);
         Random rng(run.o.seed);
         generate::Shaker shaker(packing, run.o.shake);
+        if (c.resumed) {  // the positions, statistics and generator between two sweeps
+          shaker.load_state(c.resumed->state);
+          binary::read_random(c.resumed->state, rng);
+        }
+        CheckpointWriter checkpoint(c.out, c.flags->schema(), c.in, run.o.checkpoint_seconds);
+        const auto save = [&](std::ostream& out) {
+          shaker.save_state(out);
+          binary::write_random(out, rng);
+        };
         Progress progress("shake", run.o.sweeps, !c.quiet);
-        shaker.sweeps(run.o.sweeps, rng, [&](const generate::ShakeStats& s) {
+        while (shaker.stats().sweeps < run.o.sweeps) {
+          shaker.sweep(rng);
+          const generate::ShakeStats& s = shaker.stats();
           progress.update(s.sweeps, fmt::format("{:.3g} trial moves/s", static_cast<double>(s.trials) / s.seconds));
-        });
+          checkpoint.write_if_due(save);
+        }
+        checkpoint.write(save);
         progress.finish();
         const generate::ShakeStats& s = shaker.stats();
         const std::filesystem::path dir(c.out);

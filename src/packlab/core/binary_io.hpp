@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "packlab/core/error.hpp"
+#include "packlab/core/random.hpp"
 
 namespace packlab::binary {
 
@@ -49,10 +50,27 @@ inline void write_string(std::ostream& out, const std::string& s) {
   write_vector(out, std::vector<char>(s.begin(), s.end()));
 }
 
-inline void read_string(std::istream& in, std::string& s, const char* what) {
+inline void read_string(std::istream& in, std::string& s, const char* what, std::uint64_t max_size = 4096) {
   std::vector<char> chars;
-  read_vector(in, chars, what, 4096);
+  read_vector(in, chars, what, max_size);
   s.assign(chars.begin(), chars.end());
+}
+
+// The exact state of the random generator (the standard's text form of std::mt19937_64), as
+// a vector of characters.
+inline void write_random(std::ostream& out, const Random& rng) {
+  std::ostringstream text;
+  text << rng.engine();
+  const std::string s = text.str();
+  write_vector(out, std::vector<char>(s.begin(), s.end()));
+}
+
+inline void read_random(std::istream& in, Random& rng) {
+  std::vector<char> chars;
+  read_vector(in, chars, "random generator", 1 << 20);
+  std::istringstream text(std::string(chars.begin(), chars.end()));
+  text >> rng.engine();
+  if (!text) fail_input("checkpoint is damaged: random generator state");
 }
 
 // FNV-1a, 64 bit: a checksum against damaged files (not against tampering).

@@ -9,6 +9,7 @@
 #include <numbers>
 #include <numeric>
 
+#include "packlab/core/binary_io.hpp"
 #include "packlab/core/error.hpp"
 #include "packlab/core/memory.hpp"
 #include "packlab/core/neighbor_list.hpp"
@@ -105,117 +106,190 @@ double list_max_overlap(const Packing& p) {
 
 }  // namespace
 
-FbaResult fba_pack(const Box& box, const std::vector<double>& relative_radius, const FbaParams& params, Random& rng,
-                   long history_every, const std::function<void(const FbaStatus&)>& progress) {
-  params.validate();
-  const auto t0 = std::chrono::steady_clock::now();
-  const std::size_t n = relative_radius.size();
+FbaRun::FbaRun(const Box& box, std::vector<double> relative_radius, const FbaParams& params, Random& rng,
+               long history_every)
+    : box_(box), rho_(std::move(relative_radius)), params_(params), history_every_(history_every) {
+  setup();
+  // Start: uniform random centres; open axes keep whole (target) spheres inside.
+  pos_.resize(rho_.size());
+  for (std::size_t i = 0; i < rho_.size(); ++i)
+    for (int a = 0; a < 3; ++a) {
+      const double m = box_.periodic[a] ? 0.0 : target_[i];
+      pos_[i][a] = box_.lo[a] + rng.uniform(m, box_.length[a] - m);
+    }
+}
+
+void FbaRun::setup() {
+  params_.validate();
+  const std::size_t n = rho_.size();
   require(n >= 1 && n <= 100'000'000, "particles", static_cast<double>(n), "in [1, 1e8]");
   // Positions, radii, displacements, cell lists: about 200 bytes per sphere.
   require_memory("particles", static_cast<double>(n), static_cast<double>(n), 200.0);
   for (int a = 0; a < 3; ++a)
-    require(box.length[a] > 0.0 && std::isfinite(box.length[a]), std::string("box length ") + "xyz"[a], box.length[a],
-            "> 0 m");
+    require(box_.length[a] > 0.0 && std::isfinite(box_.length[a]), std::string("box length ") + "xyz"[a],
+            box_.length[a], "> 0 m");
   double vol_rel = 0.0, rho_max = 0.0;
-  for (double r : relative_radius) {
+  for (double r : rho_) {
     require(r > 0.0 && std::isfinite(r), "relative radius", r, "> 0");
     vol_rel += 4.0 / 3.0 * std::numbers::pi * r * r * r;
     rho_max = std::max(rho_max, r);
   }
   // Target scale: sum 4/3 pi (s rho)^3 = (1 - porosity) V.
-  const double s_t = std::cbrt((1.0 - params.target_porosity) * box.volume() / vol_rel);
-  const double s_fill = std::min(std::cbrt(box.volume() / vol_rel), 1.5 * s_t);  // volume fraction 1, capped
-  const double skin = 0.4 * s_t * rho_max;                                       // neighbour-list skin
+  s_t_ = std::cbrt((1.0 - params_.target_porosity) * box_.volume() / vol_rel);
+  const double s_fill = std::min(std::cbrt(box_.volume() / vol_rel), 1.5 * s_t_);  // volume fraction 1, capped
+  skin_ = 0.4 * s_t_ * rho_max;                                                    // neighbour-list skin
   for (int a = 0; a < 3; ++a) {
-    const double need = box.periodic[a] ? 2.0 * s_fill * rho_max + skin : 2.0 * s_t * rho_max;
-    if (box.length[a] < need)
+    const double need = box_.periodic[a] ? 2.0 * s_fill * rho_max + skin_ : 2.0 * s_t_ * rho_max;
+    if (box_.length[a] < need)
       fail_input(
           fmt::format("box length {} = {:g} m: must be >= {:g} m (the largest sphere{}); use a larger box "
                       "or more particles",
-                      "xyz"[a], box.length[a], need, box.periodic[a] ? " and its images" : ""));
+                      "xyz"[a], box_.length[a], need, box_.periodic[a] ? " and its images" : ""));
   }
-
-  std::vector<double> target(n), outer(n), w3(n);
+  target_.resize(n);
+  w3_.resize(n);
   for (std::size_t i = 0; i < n; ++i) {
-    target[i] = s_t * relative_radius[i];
-    w3[i] = relative_radius[i] * relative_radius[i] * relative_radius[i];
+    target_[i] = s_t_ * rho_[i];
+    w3_[i] = rho_[i] * rho_[i] * rho_[i];
   }
-  // Start: uniform random centres; open axes keep whole (target) spheres inside.
-  std::vector<Vec3> pos(n);
-  for (std::size_t i = 0; i < n; ++i)
-    for (int a = 0; a < 3; ++a) {
-      const double m = box.periodic[a] ? 0.0 : target[i];
-      pos[i][a] = box.lo[a] + rng.uniform(m, box.length[a] - m);
-    }
+  outer_.resize(n);
+  disp_.resize(n);
+  list_.set_skin(skin_);
+  s_out_ = s_fill;
+  status_.porosity = params_.target_porosity;
+}
 
-  double s_out = s_fill;
-  NeighborList list(skin);
-  std::vector<Vec3> disp(n);
+bool FbaRun::run(long iterations, const std::function<void(const FbaStatus&)>& progress) {
+  const auto t0 = std::chrono::steady_clock::now();
+  const double seconds0 = seconds_;
+  for (long done = 0; !finished_ && (iterations < 0 || done < iterations); ++done) {
+    seconds_ = seconds0 + std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    iterate(progress);
+  }
+  seconds_ = seconds0 + std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  return finished_;
+}
+
+// Iteration iteration_: the overlaps at the nominal scale, the stop test, then (unless stopped)
+// the moves and the new nominal scale.
+void FbaRun::iterate(const std::function<void(const FbaStatus&)>& progress) {
+  const std::size_t n = rho_.size();
+  for (std::size_t i = 0; i < n; ++i) outer_[i] = s_out_ * rho_[i];
+  if (!built_ || list_.needs_rebuild(pos_, outer_)) {
+    list_.build(box_, pos_, outer_, params_.threads);
+    built_ = true;
+  }
+  std::fill(disp_.begin(), disp_.end(), Vec3{});
+  double s_in = s_out_;
+  long overlapping = 0;
+  for (int i = 0; i < static_cast<int>(n); ++i) {
+    const auto ui = static_cast<std::size_t>(i);
+    for (int k = list_.first(i); k < list_.first(i + 1); ++k) {
+      const auto uk = static_cast<std::size_t>(k);
+      const auto uj = static_cast<std::size_t>(list_.partner()[uk]);
+      if (uj == ui) continue;  // own image: excluded by the box-size check in setup()
+      const Vec3 d = pos_[uj] + list_.image_offset(list_.image()[uk]) - pos_[ui];
+      const double dist = norm(d);
+      const double sum = rho_[ui] + rho_[uj];
+      s_in = std::min(s_in, dist / sum);
+      const double h = s_out_ * sum - dist;
+      if (h <= 0.0 || dist <= 0.0) continue;
+      ++overlapping;
+      const Vec3 u = d * (params_.step * h / dist);
+      const double wi = w3_[uj] / (w3_[ui] + w3_[uj]);
+      disp_[ui] -= u * wi;
+      disp_[uj] += u * (1.0 - wi);
+    }
+  }
+  FbaStatus& st = status_;
+  st.iteration = iteration_;
+  st.outer_scale = s_out_ / s_t_;
+  st.inner_scale = s_in / s_t_;
+  st.max_overlap = std::max(0.0, 1.0 - s_in / s_t_);
+  st.overlapping_pairs = overlapping;
+  st.seconds = seconds_;
+  const bool done = st.max_overlap <= params_.tolerance;
+  const bool out_of_iterations = !done && iteration_ >= params_.max_iterations;
+  if (done) st.stop = FbaStop::target_reached;
+  const long it = iteration_;
+  if (history_every_ > 0 && (it % history_every_ == 0 || done || out_of_iterations)) history_.push_back(st);
+  if (progress && (it % 50 == 0 || done || out_of_iterations)) progress(st);
+  if (done || out_of_iterations) {
+    finished_ = true;
+    return;
+  }
+  for (std::size_t i = 0; i < n; ++i) {
+    Vec3 m = disp_[i];
+    const double len = norm(m), cap = params_.max_move * target_[i];
+    if (len > cap) m *= cap / len;
+    pos_[i] += m;
+    for (int a = 0; a < 3; ++a)
+      if (!box_.periodic[a]) pos_[i][a] = std::clamp(pos_[i][a], box_.lo[a] + target_[i], box_.hi()[a] - target_[i]);
+  }
+  s_out_ = std::max(s_t_, s_out_ - params_.shrink_rate * (s_out_ - s_in));
+  ++iteration_;
+}
+
+FbaResult FbaRun::result() const {
   FbaResult result;
-  FbaStatus st;
-  st.porosity = params.target_porosity;
-  bool built = false;
-  for (long it = 0;; ++it) {
-    for (std::size_t i = 0; i < n; ++i) outer[i] = s_out * relative_radius[i];
-    if (!built || list.needs_rebuild(pos, outer)) {
-      list.build(box, pos, outer, params.threads);
-      built = true;
-    }
-    std::fill(disp.begin(), disp.end(), Vec3{});
-    double s_in = s_out;
-    long overlapping = 0;
-    for (int i = 0; i < static_cast<int>(n); ++i) {
-      const auto ui = static_cast<std::size_t>(i);
-      for (int k = list.first(i); k < list.first(i + 1); ++k) {
-        const auto uk = static_cast<std::size_t>(k);
-        const auto uj = static_cast<std::size_t>(list.partner()[uk]);
-        if (uj == ui) continue;  // own image: excluded by the box-size check above
-        const Vec3 d = pos[uj] + list.image_offset(list.image()[uk]) - pos[ui];
-        const double dist = norm(d);
-        const double sum = relative_radius[ui] + relative_radius[uj];
-        s_in = std::min(s_in, dist / sum);
-        const double h = s_out * sum - dist;
-        if (h <= 0.0 || dist <= 0.0) continue;
-        ++overlapping;
-        const Vec3 u = d * (params.step * h / dist);
-        const double wi = w3[uj] / (w3[ui] + w3[uj]);
-        disp[ui] -= u * wi;
-        disp[uj] += u * (1.0 - wi);
-      }
-    }
-    st.iteration = it;
-    st.outer_scale = s_out / s_t;
-    st.inner_scale = s_in / s_t;
-    st.max_overlap = std::max(0.0, 1.0 - s_in / s_t);
-    st.overlapping_pairs = overlapping;
-    st.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-    const bool done = st.max_overlap <= params.tolerance;
-    const bool out_of_iterations = !done && it >= params.max_iterations;
-    if (done) st.stop = FbaStop::target_reached;
-    if (history_every > 0 && (it % history_every == 0 || done || out_of_iterations)) result.history.push_back(st);
-    if (progress && (it % 50 == 0 || done || out_of_iterations)) progress(st);
-    if (done || out_of_iterations) break;
-
-    for (std::size_t i = 0; i < n; ++i) {
-      Vec3 m = disp[i];
-      const double len = norm(m), cap = params.max_move * target[i];
-      if (len > cap) m *= cap / len;
-      pos[i] += m;
-      for (int a = 0; a < 3; ++a)
-        if (!box.periodic[a]) pos[i][a] = std::clamp(pos[i][a], box.lo[a] + target[i], box.hi()[a] - target[i]);
-    }
-    s_out = std::max(s_t, s_out - params.shrink_rate * (s_out - s_in));
-  }
-
   Packing& p = result.packing;
-  p.box = box;
-  for (std::size_t i = 0; i < n; ++i) p.add(box.wrap(pos[i]), target[i], particle_type::structural);
-  result.status = st;
+  p.box = box_;
+  for (std::size_t i = 0; i < rho_.size(); ++i) p.add(box_.wrap(pos_[i]), target_[i], particle_type::structural);
+  result.status = status_;
+  result.history = history_;
   result.verified_max_overlap = list_max_overlap(p);
-  if (st.stop == FbaStop::target_reached && result.verified_max_overlap > params.tolerance * (1.0 + 1e-9) + 1e-12)
+  if (status_.stop == FbaStop::target_reached && result.verified_max_overlap > params_.tolerance * (1.0 + 1e-9) + 1e-12)
     throw std::logic_error(fmt::format("fba: independent check found overlap {:g} > tolerance {:g}",
-                                       result.verified_max_overlap, params.tolerance));
+                                       result.verified_max_overlap, params_.tolerance));
   return result;
+}
+
+void FbaRun::save_state(std::ostream& out) const {
+  binary::write(out, box_);
+  binary::write_vector(out, rho_);
+  binary::write(out, params_);
+  binary::write(out, history_every_);
+  binary::write_vector(out, pos_);
+  binary::write(out, s_out_);
+  binary::write(out, iteration_);
+  binary::write(out, static_cast<std::uint8_t>(finished_));
+  binary::write(out, status_);
+  binary::write_vector(out, history_);
+  binary::write(out, seconds_);
+  binary::write(out, static_cast<std::uint8_t>(built_));
+  if (built_) list_.save(out);
+}
+
+FbaRun FbaRun::load_state(std::istream& in, int threads) {
+  FbaRun r;
+  std::uint8_t finished = 0, built = 0;
+  binary::read(in, r.box_, "box");
+  binary::read_vector(in, r.rho_, "radii");
+  binary::read(in, r.params_, "parameters");
+  binary::read(in, r.history_every_, "history_every");
+  if (threads > 0) r.params_.threads = threads;
+  r.setup();  // checks the box, radii and parameters as a new run does
+  binary::read_vector(in, r.pos_, "positions");
+  binary::read(in, r.s_out_, "nominal scale");
+  binary::read(in, r.iteration_, "iteration");
+  binary::read(in, finished, "stop flag");
+  binary::read(in, r.status_, "status");
+  binary::read_vector(in, r.history_, "history");
+  binary::read(in, r.seconds_, "seconds");
+  binary::read(in, built, "neighbour list flag");
+  if (r.pos_.size() != r.rho_.size() || r.iteration_ < 0 || !(r.s_out_ > 0.0))
+    fail_input("checkpoint is damaged: force-biased state out of range");
+  r.finished_ = finished != 0;
+  r.built_ = built != 0;
+  if (r.built_) r.list_.load(in);
+  return r;
+}
+
+FbaResult fba_pack(const Box& box, const std::vector<double>& relative_radius, const FbaParams& params, Random& rng,
+                   long history_every, const std::function<void(const FbaStatus&)>& progress) {
+  FbaRun run(box, relative_radius, params, rng, history_every);
+  run.run(-1, progress);
+  return run.result();
 }
 
 std::array<bool, 3> periodic_axes_from_name(const std::string& s) {

@@ -29,9 +29,12 @@
 
 #include <array>
 #include <functional>
+#include <istream>
+#include <ostream>
 #include <string>
 #include <vector>
 
+#include "packlab/core/neighbor_list.hpp"
 #include "packlab/core/packing.hpp"
 #include "packlab/core/random.hpp"
 #include "packlab/generate/size_classes.hpp"
@@ -68,6 +71,57 @@ struct FbaResult {
   FbaStatus status;
   double verified_max_overlap = 0;  // independent pair search on the result
   std::vector<FbaStatus> history;   // every `history_every` iterations (and the last)
+};
+
+// The algorithm as a run that can stop and go on: run() advances by whole iterations, and
+// between two of them save_state() writes everything the next iteration depends on (positions,
+// the nominal scale, the iteration count, the history and the neighbour list, whose pair order
+// sets the order of the sums). A run loaded from that state goes on exactly as the saved one
+// would have: the same positions bit for bit, whatever the thread count.
+class FbaRun {
+ public:
+  // Draws the start (uniform random centres) from `rng`; InputError on bad input.
+  FbaRun(const Box& box, std::vector<double> relative_radius, const FbaParams& params, Random& rng,
+         long history_every = 0);
+  // A run saved by save_state() (box, radii, parameters included); InputError if damaged.
+  // `threads` > 0 replaces the saved thread count (the result does not depend on it).
+  static FbaRun load_state(std::istream& in, int threads = 0);
+  void save_state(std::ostream& out) const;
+
+  // At most `iterations` more iterations (all that are needed when negative); true when the
+  // run has stopped (target reached or max_iterations). `progress` is called every 50
+  // iterations and at the stop.
+  bool run(long iterations = -1, const std::function<void(const FbaStatus&)>& progress = {});
+  bool finished() const { return finished_; }
+  const FbaStatus& status() const { return status_; }
+  // The packing at the target radii, verified by an independent pair search (after the stop).
+  FbaResult result() const;
+
+ private:
+  FbaRun() = default;
+  void setup();  // derived sizes and checks, from box_, rho_ and params_
+  void iterate(const std::function<void(const FbaStatus&)>& progress);
+
+  Box box_;
+  std::vector<double> rho_;  // relative radii
+  FbaParams params_;
+  long history_every_ = 0;
+  // Derived by setup().
+  double s_t_ = 0.0, skin_ = 0.0;
+  std::vector<double> target_, w3_;
+  // The state.
+  std::vector<Vec3> pos_;
+  double s_out_ = 0.0;
+  long iteration_ = 0;
+  bool finished_ = false;
+  FbaStatus status_;
+  std::vector<FbaStatus> history_;
+  double seconds_ = 0.0;  // wall time of the iterations so far (all sessions)
+  bool built_ = false;    // list_ holds a list (saved with the state: its pair order sets the sums)
+  NeighborList list_{0.0};
+  // Working memory.
+  std::vector<double> outer_;
+  std::vector<Vec3> disp_;
 };
 
 // Packs spheres of relative radii `relative_radius` into `box` (its periodic axes as given).

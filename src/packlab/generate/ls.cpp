@@ -521,6 +521,7 @@ LsStatus LsSimulation::run(const std::function<void(const LsStatus&)>& on_block)
   const auto t0 = std::chrono::steady_clock::now();
   const std::clock_t c0 = std::clock();
   const double seconds0 = status_.seconds, cpu0 = status_.cpu_seconds;
+  if (stopped_) return status_;
   if (params_.target_volume_fraction > 0.0 && status_.volume_fraction >= params_.target_volume_fraction) {
     status_.stop = LsStop::target_reached;
     return status_;
@@ -532,6 +533,7 @@ LsStatus LsSimulation::run(const std::function<void(const LsStatus&)>& on_block)
     ++blocks;
     status_.seconds = seconds0 + std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     status_.cpu_seconds = cpu0 + static_cast<double>(std::clock() - c0) / CLOCKS_PER_SEC;
+    stopped_ = !go_on;
     if (on_block) on_block(status_);
     if (!go_on) break;
     if (params_.max_blocks > 0 && blocks >= params_.max_blocks) {

@@ -44,6 +44,8 @@
 #include <array>
 #include <cstdint>
 #include <functional>
+#include <istream>
+#include <ostream>
 #include <string>
 #include <vector>
 
@@ -95,12 +97,19 @@ class LsSimulation {
   LsSimulation(const Box& box, std::vector<Vec3> points, std::vector<double> unit_radius, const LsParams& params,
                Random& rng);
 
-  // Runs blocks until a stop criterion; on_block is called after each block.
+  // Runs blocks until a stop criterion; on_block is called after each block. Once a criterion
+  // other than max_blocks has stopped the simulation, run() returns at once.
   LsStatus run(const std::function<void(const LsStatus&)>& on_block = {});
+  // The state between two blocks (as on_block sees it): every particle at one time, positions,
+  // velocities, collision counters, the scale, the adapted skin and the status. A simulation
+  // loaded from it goes on exactly as the saved one would have (bit for bit).
+  void save_state(std::ostream& out) const;
+  static LsSimulation load_state(std::istream& in);
   // The packing now (particles in their original order, radii at the current scale, positions
   // wrapped into the box, velocities included). Overlaps are checked: see overlap_correction().
   Packing packing();
   const LsStatus& status() const { return status_; }
+  // New parameters (and stop criteria: a stopped simulation may run on).
   void set_params(const LsParams& params);
   const LsParams& params() const { return params_; }
   // 1 - (factor the radii were scaled by in the last packing() to remove overlaps), >= 0.
@@ -135,7 +144,9 @@ class LsSimulation {
     std::vector<int> fill;   // per cell
   };
 
+  LsSimulation() = default;
   void init(const Box& box, std::vector<Vec3> points, std::vector<double> unit_radius, double s0, Random& rng);
+  void size_work_arrays();  // the per-particle arrays rebuilt every block
   void start_block();
   bool run_block();  // false when stopped
   void sync_all(double t);
@@ -182,6 +193,7 @@ class LsSimulation {
   double virial_ = 0.0;
   double skin_rel_ = 0.1;
   LsStatus status_;
+  bool stopped_ = false;  // a stop criterion other than max_blocks was met
   double overlap_correction_ = 0.0;
 };
 

@@ -10,6 +10,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "packlab/core/binary_io.hpp"
 #include "packlab/core/error.hpp"
 #include "packlab/core/memory.hpp"
 #include "packlab/generate/ls.hpp"
@@ -94,10 +95,7 @@ void LsSimulation::init(const Box& box, std::vector<Vec3> points, std::vector<do
   cls_.resize(n);
   id_.resize(n);
   count_.assign(n, 0);
-  ev_.resize(n);
-  cell_.resize(n);
-  slot_.resize(n);
-  cc_.resize(n);
+  size_work_arrays();
   double volume = 0.0;
   for (std::size_t i = 0; i < n; ++i) {
     Body& b = body_[i];
@@ -141,9 +139,67 @@ void LsSimulation::init(const Box& box, std::vector<Vec3> points, std::vector<do
   status_.volume_fraction = phi1_ * s0_ * s0_ * s0_;
 }
 
+void LsSimulation::size_work_arrays() {
+  const std::size_t n = body_.size();
+  ev_.resize(n);
+  cell_.resize(n);
+  slot_.resize(n);
+  cc_.resize(n);
+}
+
+void LsSimulation::save_state(std::ostream& out) const {
+  binary::write(out, params_);
+  binary::write(out, box_.lo);
+  binary::write(out, box_.length);
+  binary::write(out, origin_);
+  binary::write_vector(out, class_rho_);
+  binary::write(out, phi1_);
+  binary::write(out, v_thermal_);
+  binary::write(out, s0_);
+  binary::write(out, skin_rel_);
+  binary::write_vector(out, body_);
+  binary::write_vector(out, cls_);
+  binary::write_vector(out, id_);
+  binary::write_vector(out, count_);
+  binary::write(out, status_);
+  binary::write(out, static_cast<std::uint8_t>(stopped_));
+}
+
+LsSimulation LsSimulation::load_state(std::istream& in) {
+  LsSimulation sim;
+  std::uint8_t stopped = 0;
+  binary::read(in, sim.params_, "LS parameters");
+  binary::read(in, sim.box_.lo, "box");
+  binary::read(in, sim.box_.length, "box");
+  binary::read(in, sim.origin_, "box origin");
+  binary::read_vector(in, sim.class_rho_, "size classes", 64);
+  binary::read(in, sim.phi1_, "volume fraction at s = 1");
+  binary::read(in, sim.v_thermal_, "thermal speed");
+  binary::read(in, sim.s0_, "scale");
+  binary::read(in, sim.skin_rel_, "skin");
+  binary::read_vector(in, sim.body_, "particles");
+  binary::read_vector(in, sim.cls_, "classes");
+  binary::read_vector(in, sim.id_, "particle ids");
+  binary::read_vector(in, sim.count_, "collision counters");
+  binary::read(in, sim.status_, "status");
+  binary::read(in, stopped, "stop flag");
+  sim.params_.validate();
+  sim.box_.periodic = {true, true, true};
+  sim.nclass_ = static_cast<int>(sim.class_rho_.size());
+  const std::size_t n = sim.body_.size();
+  bool ok = n >= 2 && sim.nclass_ >= 1 && sim.cls_.size() == n && sim.id_.size() == n && sim.count_.size() == n;
+  for (std::size_t i = 0; ok && i < n; ++i)
+    ok = sim.cls_[i] >= 0 && sim.cls_[i] < sim.nclass_ && sim.id_[i] >= 0 && static_cast<std::size_t>(sim.id_[i]) < n;
+  if (!ok) fail_input("checkpoint is damaged: Lubachevsky-Stillinger state out of range");
+  sim.stopped_ = stopped != 0;
+  sim.size_work_arrays();
+  return sim;
+}
+
 void LsSimulation::set_params(const LsParams& params) {
   params.validate();
   params_ = params;
+  stopped_ = false;  // new criteria
 }
 
 void LsSimulation::set_positions(const std::vector<Vec3>& position) {

@@ -1,5 +1,6 @@
 #include "packlab/generate/scrm.hpp"
 
+#include "packlab/core/binary_io.hpp"
 #include "packlab/core/error.hpp"
 
 namespace packlab::generate {
@@ -13,50 +14,116 @@ void ScrmParams::validate() const {
   require(final_shakes >= 0, "final_shakes", static_cast<double>(final_shakes), ">= 0");
 }
 
-ScrmResult run_scrm(LsSimulation& simulation, const ScrmParams& params, Random& rng,
-                    const std::function<void(const LsStatus&, const ShakeStats&)>& on_progress) {
-  params.validate();
+ScrmRun::ScrmRun(LsSimulation simulation, const ScrmParams& params) : ScrmRun(std::move(simulation), params, true) {}
+
+ScrmRun::ScrmRun(LsSimulation simulation, const ScrmParams& params, bool fresh)
+    : simulation_(std::move(simulation)), params_(params), packing_(std::make_unique<Packing>()) {
+  params_.validate();
+  if (!fresh) return;
+  LsParams segment = params_.ls;
+  segment.max_blocks = params_.shakes_per_cycle > 0 ? params_.blocks_per_cycle : 0;
+  simulation_.set_params(segment);
+}
+
+void ScrmRun::add(const ShakeStats& s) {
+  const double steps =
+      total_.mean_step * static_cast<double>(total_.moves) + s.mean_step * static_cast<double>(s.moves);
+  total_.sweeps += s.sweeps;
+  total_.visits += s.visits;
+  total_.trials += s.trials;
+  total_.moves += s.moves;
+  total_.seconds += s.seconds;
+  total_.mean_step = total_.moves > 0 ? steps / static_cast<double>(total_.moves) : 0.0;
+  total_.window = s.window;
+}
+
+void ScrmRun::start_final_shakes() {
+  ls_ = simulation_.status();
+  if (params_.final_shakes > 0) {
+    final_shaker_ = std::make_unique<Shaker>(*packing_, params_.shake);
+    phase_ = Phase::final_shakes;
+  } else {
+    phase_ = Phase::done;
+  }
+}
+
+bool ScrmRun::step(Random& rng, const ScrmProgress& on_progress) {
+  if (phase_ == Phase::growth) {
+    const LsStatus st = simulation_.run();
+    ++cycles_;
+    *packing_ = simulation_.packing();
+    if (on_progress) on_progress(st, total_);
+    if (st.stop != LsStop::max_blocks) {
+      start_final_shakes();
+      return !finished();
+    }
+    Shaker shaker(*packing_, params_.shake);
+    shaker.sweeps(params_.shakes_per_cycle, rng);
+    add(shaker.stats());
+    simulation_.set_positions(packing_->position);
+    if (on_progress) on_progress(st, total_);
+  } else if (phase_ == Phase::final_shakes) {
+    final_shaker_->sweep(rng);
+    const ShakeStats& s = final_shaker_->stats();
+    if (on_progress) {
+      ShakeStats now = total_;
+      now.sweeps += s.sweeps;
+      on_progress(ls_, now);
+    }
+    if (s.sweeps >= params_.final_shakes) {
+      add(s);
+      phase_ = Phase::done;
+    }
+  }
+  return !finished();
+}
+
+ScrmResult ScrmRun::result() const {
   ScrmResult result;
-  LsParams segment = params.ls;
-  segment.max_blocks = params.shakes_per_cycle > 0 ? params.blocks_per_cycle : 0;
-  simulation.set_params(segment);
-  ShakeStats total;
-  auto add = [&total](const ShakeStats& s) {
-    const double steps = total.mean_step * static_cast<double>(total.moves) + s.mean_step * static_cast<double>(s.moves);
-    total.sweeps += s.sweeps;
-    total.visits += s.visits;
-    total.trials += s.trials;
-    total.moves += s.moves;
-    total.seconds += s.seconds;
-    total.mean_step = total.moves > 0 ? steps / static_cast<double>(total.moves) : 0.0;
-    total.window = s.window;
-  };
-  for (;;) {
-    const LsStatus st = simulation.run();
-    ++result.cycles;
-    result.packing = simulation.packing();
-    if (on_progress) on_progress(st, total);
-    if (st.stop != LsStop::max_blocks) break;
-    Shaker shaker(result.packing, params.shake);
-    shaker.sweeps(params.shakes_per_cycle, rng);
-    add(shaker.stats());
-    simulation.set_positions(result.packing.position);
-    if (on_progress) on_progress(st, total);
-  }
-  result.ls = simulation.status();
-  if (params.final_shakes > 0) {
-    Shaker shaker(result.packing, params.shake);
-    shaker.sweeps(params.final_shakes, rng, [&](const ShakeStats& s) {
-      if (on_progress) {
-        ShakeStats now = total;
-        now.sweeps += s.sweeps;
-        on_progress(result.ls, now);
-      }
-    });
-    add(shaker.stats());
-  }
-  result.shake = total;
+  result.packing = *packing_;
+  result.ls = ls_;
+  result.shake = total_;
+  result.cycles = cycles_;
   return result;
+}
+
+void ScrmRun::save_state(std::ostream& out) const {
+  simulation_.save_state(out);
+  binary::write(out, static_cast<std::int32_t>(phase_));
+  binary::write(out, cycles_);
+  binary::write(out, ls_);
+  write_shake_stats(out, total_);
+  binary::write(out, static_cast<std::uint8_t>(final_shaker_ != nullptr));
+  if (final_shaker_) final_shaker_->save_state(out);  // the shaken packing
+}
+
+ScrmRun ScrmRun::load_state(std::istream& in, const ScrmParams& params) {
+  ScrmRun run(LsSimulation::load_state(in), params, false);
+  std::int32_t phase = 0;
+  binary::read(in, phase, "SCRM phase");
+  if (phase < 0 || phase > static_cast<std::int32_t>(Phase::done)) fail_input("checkpoint is damaged: SCRM phase");
+  run.phase_ = static_cast<Phase>(phase);
+  binary::read(in, run.cycles_, "cycles");
+  binary::read(in, run.ls_, "LS status");
+  run.total_ = read_shake_stats(in);
+  std::uint8_t shaking = 0;
+  binary::read(in, shaking, "final shakes flag");
+  // The packing of the last LS segment follows from the simulation's state; the final shakes
+  // moved it on from there.
+  if (run.cycles_ > 0) *run.packing_ = run.simulation_.packing();
+  if (shaking != 0) {
+    if (run.cycles_ == 0) fail_input("checkpoint is damaged: SCRM counters");
+    run.final_shaker_ = std::make_unique<Shaker>(*run.packing_, run.params_.shake);
+    run.final_shaker_->load_state(in);
+  }
+  return run;
+}
+
+ScrmResult run_scrm(LsSimulation& simulation, const ScrmParams& params, Random& rng, const ScrmProgress& on_progress) {
+  ScrmRun run(simulation, params);
+  while (run.step(rng, on_progress)) {
+  }
+  return run.result();
 }
 
 }  // namespace packlab::generate

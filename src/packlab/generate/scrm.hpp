@@ -5,7 +5,11 @@
 // events per particle) to `shakes_per_cycle` global shakes.
 #pragma once
 
+#include <cstdint>
 #include <functional>
+#include <istream>
+#include <memory>
+#include <ostream>
 
 #include "packlab/generate/ls.hpp"
 #include "packlab/generate/shake.hpp"
@@ -28,8 +32,41 @@ struct ScrmResult {
   long cycles = 0;
 };
 
+using ScrmProgress = std::function<void(const LsStatus&, const ShakeStats&)>;
+
+// SCRM as a run that can stop and go on: step() does one LS segment and the global shakes
+// after it, or one of the final shakes; between two steps save_state() writes the whole state
+// (the LS simulation, the phase, the counters, the shake statistics and, during the final
+// shakes, the shaken packing), so that a run loaded from it, given the generator in the saved
+// state, ends exactly as the uninterrupted one.
+class ScrmRun {
+ public:
+  ScrmRun(LsSimulation simulation, const ScrmParams& params);
+  // False once the run is done. `on_progress(ls, shake)` after every LS segment and every shake.
+  bool step(Random& rng, const ScrmProgress& on_progress = {});
+  bool finished() const { return phase_ == Phase::done; }
+  ScrmResult result() const;
+  void save_state(std::ostream& out) const;
+  static ScrmRun load_state(std::istream& in, const ScrmParams& params);
+
+ private:
+  enum class Phase : std::int32_t { growth, final_shakes, done };
+  ScrmRun(LsSimulation simulation, const ScrmParams& params, bool fresh);
+  void start_final_shakes();
+  void add(const ShakeStats& s);
+
+  LsSimulation simulation_;
+  ScrmParams params_;
+  Phase phase_ = Phase::growth;
+  long cycles_ = 0;
+  LsStatus ls_;                           // at the end of the growth
+  ShakeStats total_;                      // every shake so far
+  std::unique_ptr<Packing> packing_;      // the result so far (a fixed address: the final shaker holds it)
+  std::unique_ptr<Shaker> final_shaker_;  // from the end of the growth on
+};
+
 // `on_progress(ls, shake)` is called after every LS segment and every shake.
 ScrmResult run_scrm(LsSimulation& simulation, const ScrmParams& params, Random& rng,
-                    const std::function<void(const LsStatus&, const ShakeStats&)>& on_progress = {});
+                    const ScrmProgress& on_progress = {});
 
 }  // namespace packlab::generate

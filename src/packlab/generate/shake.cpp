@@ -8,6 +8,7 @@
 #include <limits>
 #include <numeric>
 
+#include "packlab/core/binary_io.hpp"
 #include "packlab/core/error.hpp"
 #include "packlab/generate/overlap_check.hpp"
 #include "packlab/io/options.hpp"
@@ -53,6 +54,11 @@ Shaker::Shaker(Packing& packing, const ShakeParams& params) : p_(packing), param
     n_[a] = std::clamp(static_cast<int>(std::floor(p_.box.length[a] / range)), 1, 1024);
     h_[a] = p_.box.length[a] / n_[a];
   }
+  fill_cells();
+}
+
+void Shaker::fill_cells() {
+  const std::size_t n = p_.size();
   cells_.assign(static_cast<std::size_t>(n_[0]) * n_[1] * n_[2], {});
   cell_of_.resize(n);
   slot_.resize(n);
@@ -63,6 +69,56 @@ Shaker::Shaker(Packing& packing, const ShakeParams& params) : p_(packing), param
     slot_[i] = static_cast<int>(cells_[c].size());
     cells_[c].push_back(static_cast<int>(i));
   }
+}
+
+void write_shake_stats(std::ostream& out, const ShakeStats& stats) {
+  binary::write(out, stats.sweeps);
+  binary::write(out, stats.visits);
+  binary::write(out, stats.trials);
+  binary::write(out, stats.moves);
+  binary::write(out, stats.mean_step);
+  binary::write(out, stats.seconds);
+  binary::write_vector(out, stats.window);
+}
+
+ShakeStats read_shake_stats(std::istream& in) {
+  ShakeStats stats;
+  binary::read(in, stats.sweeps, "sweeps");
+  binary::read(in, stats.visits, "visits");
+  binary::read(in, stats.trials, "trials");
+  binary::read(in, stats.moves, "moves");
+  binary::read(in, stats.mean_step, "mean step");
+  binary::read(in, stats.seconds, "seconds");
+  binary::read_vector(in, stats.window, "windows");
+  return stats;
+}
+
+void Shaker::save_state(std::ostream& out) const {
+  binary::write(out, p_.box.lo);
+  binary::write(out, p_.box.length);
+  binary::write_vector(out, p_.radius);
+  binary::write_vector(out, p_.position);
+  write_shake_stats(out, stats_);
+  binary::write(out, step_sum_);
+}
+
+void Shaker::load_state(std::istream& in) {
+  Vec3 lo, length;
+  std::vector<double> radius;
+  std::vector<Vec3> position;
+  binary::read(in, lo, "box");
+  binary::read(in, length, "box");
+  binary::read_vector(in, radius, "radii");
+  if (lo != p_.box.lo || length != p_.box.length || radius != p_.radius)
+    fail_input("the saved shaking is of another packing (box or radii differ from the input file)");
+  binary::read_vector(in, position, "positions");
+  ShakeStats stats = read_shake_stats(in);
+  binary::read(in, step_sum_, "step sum");
+  if (position.size() != p_.size() || stats.window.size() != stats_.window.size() || stats.sweeps < 0)
+    fail_input("checkpoint is damaged: shaking state out of range");
+  p_.position = std::move(position);
+  stats_ = std::move(stats);
+  fill_cells();
 }
 
 int Shaker::cell_index(const Vec3& p) const {

@@ -16,6 +16,8 @@
 #pragma once
 
 #include <functional>
+#include <istream>
+#include <ostream>
 #include <vector>
 
 #include "packlab/core/packing.hpp"
@@ -43,6 +45,10 @@ struct ShakeStats {
   std::vector<double> window;  // final R_sh per class (largest class first)
 };
 
+// The statistics in a checkpoint (binary, InputError when truncated).
+void write_shake_stats(std::ostream& out, const ShakeStats& stats);
+ShakeStats read_shake_stats(std::istream& in);
+
 class Shaker {
  public:
   // Works on `packing` in place (kept by reference); throws InputError if spheres overlap by
@@ -53,6 +59,11 @@ class Shaker {
   // m global shakes; on_sweep after each.
   void sweeps(long m, Random& rng, const std::function<void(const ShakeStats&)>& on_sweep = {});
   const ShakeStats& stats() const { return stats_; }
+  // Between two sweeps: the positions, the statistics and the windows. A shaker of the same
+  // packing (radii and box; InputError otherwise) that loads them and gets the same generator
+  // state goes on exactly as the saved one would have.
+  void save_state(std::ostream& out) const;
+  void load_state(std::istream& in);
   // Collision-limited free distance of particle i along unit vector u (eq. 9), up to `limit`.
   double free_distance(int i, const Vec3& u, double limit) const;
   // The same against the neighbours gathered by gather(i, ...) (testing window).
@@ -60,6 +71,7 @@ class Shaker {
 
  private:
   void visit(int i, Random& rng);
+  void fill_cells();
   int cell_index(const Vec3& p) const;
   Packing& p_;
   ShakeParams params_;

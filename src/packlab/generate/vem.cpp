@@ -356,10 +356,7 @@ void Vem::save_checkpoint(std::ostream& out) const {
 
 void Vem::save_state(std::ostream& out) const {
   write_params(out, params_);
-  std::ostringstream rng_state;
-  rng_state << rng_.engine();
-  const std::string s = rng_state.str();
-  binary::write_vector(out, std::vector<char>(s.begin(), s.end()));
+  binary::write_random(out, rng_);
   binary::write(out, static_cast<std::int32_t>(stage_));
   binary::write(out, static_cast<std::int32_t>(stop_));
   binary::write(out, blowup_done_);
@@ -389,8 +386,7 @@ std::unique_ptr<Vem> Vem::resume(std::istream& checkpoint, int threads) {
   VemParams params = read_params(in);
   if (threads > 0) params.threads = threads;
   std::unique_ptr<Vem> vem(new Vem(params, ResumeTag{}));
-  std::vector<char> rng_bytes;
-  binary::read_vector(in, rng_bytes, "random generator", 1 << 20);
+  binary::read_random(in, vem->rng_);
   std::int32_t stage = 0, stop = 0;
   std::uint8_t relaxing = 0, converged = 0;
   binary::read(in, stage, "stage");
@@ -421,9 +417,6 @@ std::unique_ptr<Vem> Vem::resume(std::istream& checkpoint, int threads) {
   vem->engine_ = std::make_unique<dem::Engine>(start, vem->engine_config());
   vem->engine_->load_state(in);
   vem->apply_mass_scaling();
-  std::istringstream rng_state(std::string(rng_bytes.begin(), rng_bytes.end()));
-  rng_state >> vem->rng_.engine();
-  if (!rng_state) fail_input("checkpoint is damaged: random generator state");
   return vem;
 }
 

@@ -180,7 +180,7 @@ class Vem {
   dem::EngineConfig engine_config() const;
 
   VemParams params_;
-  mutable Random rng_;  // engine() is non-const; only its state is saved
+  Random rng_;
   std::unique_ptr<dem::Engine> engine_;
   VemStage stage_ = VemStage::blowup;
   VemStop stop_ = VemStop::none;

@@ -401,6 +401,38 @@ nlohmann::json ConfigSchema::json() const {
   return out;
 }
 
+nlohmann::json ConfigSchema::values() const {
+  nlohmann::json out = nlohmann::json::object();
+  for (const Field& f : fields_) out[f.key] = f.value();
+  return out;
+}
+
+void ConfigSchema::set_values(const nlohmann::json& values, std::string_view source) const {
+  if (!values.is_object()) fail_input(fmt::format("{}: the settings are not a table of keys", source));
+  for (const auto& [key, value] : values.items()) {
+    const Field* field = find(key);
+    const std::string where = fmt::format("{}: {}", source, key);
+    if (field == nullptr) fail_input(fmt::format("{}: not an option of packlab {}", where, command_));
+    if (value.is_boolean()) {
+      set(*field, value.get<bool>(), where);
+    } else if (value.is_number_unsigned() &&
+               value.get<std::uint64_t>() > static_cast<std::uint64_t>(std::numeric_limits<std::int64_t>::max())) {
+      fail_input(fmt::format("{} = {}: out of range", where, value.dump()));
+    } else if (value.is_number_integer()) {
+      set(*field, value.get<std::int64_t>(), where);
+    } else if (value.is_number_float()) {
+      set(*field, value.get<double>(), where);
+    } else if (value.is_string()) {
+      set(*field, value.get<std::string>(), where);
+    } else if (value.is_array() &&
+               std::all_of(value.begin(), value.end(), [](const auto& x) { return x.is_number(); })) {
+      set(*field, value.get<std::vector<double>>(), where);
+    } else {
+      fail_input(fmt::format("{} = {}: not a value this option takes", where, value.dump()));
+    }
+  }
+}
+
 std::string ConfigSchema::markdown() const {
   std::string out = fmt::format("## `packlab {}`\n\n", command_);
   if (!summary_.empty()) out += summary_ + "\n\n";

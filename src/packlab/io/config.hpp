@@ -116,6 +116,12 @@ class ConfigSchema {
   // The report's `parameters` block: nested objects by section, each value under its key's last
   // name with its unit ("radius_m", "normal_stiffness_N_per_m"); reported fields only.
   nlohmann::json json() const;
+  // Every field's current value by key, reported or not: the settings of a run as its
+  // checkpoint keeps them. set_values() puts such a record back (through set(), so a value that
+  // does not fit its field is an InputError naming `source` and the key); keys it lacks keep
+  // their values, keys the set lacks are an InputError.
+  nlohmann::json values() const;
+  void set_values(const nlohmann::json& values, std::string_view source) const;
   // Markdown section: a heading with the command and a table key | type | default | unit |
   // allowed | description.
   std::string markdown() const;

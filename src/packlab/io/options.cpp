@@ -291,6 +291,14 @@ FbaOptions::Setup FbaOptions::setup() const {
   return s;
 }
 
+void add_checkpoint_seconds(ConfigSchema& schema, double& seconds) {
+  schema.number("output.checkpoint_seconds", seconds, "Wall-clock seconds between checkpoints")
+      .unit("s")
+      .range(ranges::positive)
+      .alias("checkpoint_seconds")
+      .command_only();
+}
+
 void add_fba_params(ConfigSchema& schema, generate::FbaParams& p) {
   schema.number("porosity", p.target_porosity, "Target porosity 1 - sum V_i / V_box")
       .range({0.30, 1.0, false, true})
@@ -324,6 +332,7 @@ ConfigSchema fba_options(FbaOptions& o) {
   schema.integer("history_every", o.history_every, "Iterations between two rows of the convergence history")
       .range({1.0, ranges::inf, false, true})
       .integer("seed", o.seed, "Seed of the random generator");
+  add_checkpoint_seconds(schema, o.checkpoint_seconds);
   return schema;
 }
 
@@ -441,6 +450,7 @@ ConfigSchema shake_options(ShakeOptions& o) {
   schema.integer("sweeps", o.sweeps, "Global shakes M (each visits every particle once)").range(ranges::non_negative);
   add_shake_params(schema, o.shake);
   schema.integer("seed", o.seed, "Seed of the random generator");
+  add_checkpoint_seconds(schema, o.checkpoint_seconds);
   return schema;
 }
 

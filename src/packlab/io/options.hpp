@@ -87,6 +87,9 @@ void add_ls_params(ConfigSchema& schema, generate::LsParams& p);
 void add_shake_params(ConfigSchema& schema, generate::ShakeParams& p);
 void add_fba_params(ConfigSchema& schema, generate::FbaParams& p);
 void add_opal_params(ConfigSchema& schema, generate::OpalOptions& o);
+// output.checkpoint_seconds (--checkpoint-seconds): wall-clock seconds between two checkpoints
+// of a command that can resume (command line and config file only).
+void add_checkpoint_seconds(ConfigSchema& schema, double& seconds);
 
 // `packlab generate vem` / packlab.generate_vem: the void expansion method (VemParams::validate
 // checks these ranges and the rules between them).
@@ -129,6 +132,7 @@ struct FbaOptions {
   generate::FbaParams fba;
   long history_every = 10;  // iterations between two rows of the convergence history
   std::uint64_t seed = 1;
+  double checkpoint_seconds = 120;  // command line only
 
   // The box and the sphere count the options describe (InputError for a contradiction).
   struct Setup {
@@ -164,6 +168,7 @@ struct ShakeOptions {
   long sweeps = 10;  // global shakes M
   generate::ShakeParams shake;
   std::uint64_t seed = 1;
+  double checkpoint_seconds = 120;  // command line only
 };
 ConfigSchema shake_options(ShakeOptions& o);
 

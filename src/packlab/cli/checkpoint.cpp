@@ -1,0 +1,86 @@
+#include "packlab/cli/checkpoint.hpp"
+
+#include <fmt/format.h>
+
+#include <cstdint>
+#include <fstream>
+
+#include "packlab/cli/options.hpp"
+#include "packlab/core/binary_io.hpp"
+#include "packlab/core/error.hpp"
+#include "packlab/io/atomic_file.hpp"
+
+namespace packlab::cli {
+
+namespace {
+
+constexpr std::uint64_t checkpoint_magic = 0x313054504B434C50ULL;  // "PLCKPT01" in the file (little-endian)
+
+}  // namespace
+
+std::filesystem::path checkpoint_path(const std::filesystem::path& dir) { return dir / "checkpoint.bin"; }
+
+void write_command_checkpoint(const std::filesystem::path& dir, const io::ConfigSchema& settings,
+                              const std::string& input, const std::function<void(std::ostream&)>& state) {
+  io::write_atomically(checkpoint_path(dir), [&](std::ostream& out) {
+    binary::write(out, checkpoint_magic);
+    binary::write_checked(out, [&](std::ostream& section) {
+      binary::write_string(section, settings.command());
+      const std::string values = settings.values().dump();
+      binary::write_vector(section, std::vector<char>(values.begin(), values.end()));
+      binary::write_string(section, input);
+      state(section);
+    });
+    if (!out) fail_input(fmt::format("{}: write failed", checkpoint_path(dir).string()));
+  });
+}
+
+SavedRun read_command_checkpoint(const std::filesystem::path& dir, const io::ConfigSchema& settings) {
+  const std::filesystem::path path = checkpoint_path(dir);
+  std::ifstream in(path, std::ios::binary);
+  if (!in) fail_input(fmt::format("--resume = {}: no checkpoint.bin in this folder", dir.string()));
+  // One message for every way a checkpoint can be bad, naming the file.
+  try {
+    std::uint64_t magic = 0;
+    binary::read(in, magic, "header");
+    if (magic != checkpoint_magic) fail_input("not a packlab checkpoint of this version (bad header)");
+    SavedRun run{"", binary::read_checked(in, "the saved run")};
+    std::string command;
+    binary::read_string(run.state, command, "command");
+    if (command != settings.command())
+      fail_input(fmt::format("written by packlab {}, not packlab {}", command, settings.command()));
+    std::vector<char> values;
+    binary::read_vector(run.state, values, "settings", 1 << 24);
+    const nlohmann::json saved = nlohmann::json::parse(values.begin(), values.end(), nullptr, false);
+    if (saved.is_discarded()) fail_input("checkpoint is damaged: settings");
+    settings.set_values(saved, "saved settings");
+    binary::read_string(run.state, run.input, "input file");
+    return run;
+  } catch (const InputError& error) {
+    fail_input(fmt::format("--resume = {}: {}: {}", dir.string(), path.filename().string(), error.what()));
+  }
+}
+
+SavedRun resume_saved_run(const OptionFlags& flags, const std::string& dir, const std::string& in,
+                          const std::string& out) {
+  std::string refused = flags.config_file().empty() ? flags.first_given({"threads"}) : "--config";
+  if (refused.empty() && !in.empty()) refused = "the input file";
+  if (!refused.empty())
+    fail_input(fmt::format("{} cannot be combined with --resume: the run continues with its saved settings", refused));
+  if (!out.empty() && std::filesystem::path(out) != std::filesystem::path(dir))
+    fail_input("--out: a resumed run writes into its own folder (--resume DIR); drop --out");
+  SavedRun run = read_command_checkpoint(dir, flags.schema());
+  flags.apply();  // --threads, the only flag left
+  return run;
+}
+
+void CheckpointWriter::write_if_due(const std::function<void(std::ostream&)>& state) {
+  if (std::chrono::duration<double>(std::chrono::steady_clock::now() - last_).count() >= seconds_) write(state);
+}
+
+void CheckpointWriter::write(const std::function<void(std::ostream&)>& state) {
+  write_command_checkpoint(dir_, settings_, input_, state);
+  last_ = std::chrono::steady_clock::now();
+}
+
+}  // namespace packlab::cli
