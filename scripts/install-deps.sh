@@ -6,6 +6,7 @@ packages=(
   build-essential cmake pkg-config
   libcli11-dev libtomlplusplus-dev nlohmann-json3-dev libfmt-dev libeigen3-dev
   libgtest-dev libgmock-dev libbenchmark-dev
+  libsuitesparse-dev libopenblas-openmp-dev
   python3 python3-dev pybind11-dev python3-numpy python3-matplotlib python3-pytest
 )
 missing=()

@@ -45,6 +45,10 @@ void bind_uniaxial_compression(py::module_& m) {
       .def_readonly("fixed_particles", &UniaxialCompressionResult::fixed_particles)
       .def_readonly("max_kinetic_ratio", &UniaxialCompressionResult::max_kinetic_ratio)
       .def_readonly("stop_reason", &UniaxialCompressionResult::stop_reason)
+      .def_readonly("solver", &UniaxialCompressionResult::solver, "dynamic or static")
+      .def_readonly("poisson_ratio", &UniaxialCompressionResult::poisson_ratio,
+                    "Static solver, open sides: -lateral / axial strain (NaN otherwise)")
+      .def_readonly("solves", &UniaxialCompressionResult::solves, "Static solver: linear solves")
       .def_readonly("model", &UniaxialCompressionResult::model, "The model after the test (bond states)")
       .def_readonly("seconds", &UniaxialCompressionResult::seconds)
       .def_property_readonly(

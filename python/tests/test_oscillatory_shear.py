@@ -92,3 +92,21 @@ def test_figures(tmp_path):
     table.write_text("a,storage_modulus,std,label\n" + "".join(f"{x},{y},{0.1 * y},this work\n" for x, y in zip(a, g)))
     packlab.plot.save(packlab.plot.storage_modulus.figure(table), tmp_path / "g.png")
     assert (tmp_path / "g.png").stat().st_size > 1000
+
+
+def test_static_solver_gives_the_closed_form_through_the_same_call():
+    # solver="static": one linear solve per orientation, the same set-up and report.
+    r = packlab.shear_test(sc_lattice(), orientations="z", solver="static", **FAST)
+    assert r["solver"] == "static"
+    assert r["storage_modulus"]["mean"] == pytest.approx(sc_modulus(10), rel=1e-8)
+    assert abs(r["phase_angle"]) < 1e-12
+    assert r["storage_modulus"]["per_orientation"][0]["solver"] == "static"
+
+
+def test_static_compression_of_a_beam_bond_column_is_pi_over_4_e_b():
+    # Simple cubic column, beam bonds to the six neighbours: E = (pi / 4) E_b.
+    p = packlab.generate_lattice(type="sc", cells=(3, 3, 8), radius=7.5e-9)
+    p = packlab.bond(p, model="elastic", cutoff_ratio=1.01)
+    r = packlab.compression_test(p, solver="static", max_strain=0.003, threads=1)
+    assert r.solver == "static"
+    assert r.youngs_modulus == pytest.approx(math.pi / 4 * 6.53e9, rel=1e-8)

@@ -73,8 +73,9 @@ void write_uniaxial_compression_outputs(const mechanics::UniaxialCompressionResu
     breaks.box = r.model.box;
     auto& time_field = breaks.field_or_add("time");
     std::vector<double> times, strains;
-    for (const auto& b : r.breaks) {
-      const double strain = r.plate_speed * b.time / r.height;
+    for (std::size_t k = 0; k < r.breaks.size(); ++k) {
+      const auto& b = r.breaks[k];
+      const double strain = r.break_strain[k];
       csv += fmt::format("{},{:.17g},{:.17g},{:.17g},{:.17g},{:.17g}\n", b.bond, b.time, strain, b.position.x,
                          b.position.y, b.position.z);
       const auto& bonds = r.model.bonds;

@@ -49,6 +49,10 @@ void add_oscillatory_shear_options(ConfigSchema& schema, mechanics::OscillatoryS
       .range({0.0, 1.0, true, false})
       .integer("threads", t.threads, "OpenMP threads (0 = all cores)")
       .range({0.0, 1024.0, false, false})
+      .text("solver", t.solver,
+            "dynamic: oscillating plate in explicit DEM; static: one quasi-static linear solve per orientation "
+            "(phase angle 0 by construction; docs/static-solver.md)")
+      .text("solver_backend", t.solver_backend, "Static solver's sparse Cholesky: auto, cholmod or eigen")
       .boolean("relax.enabled", t.relax,
                "Relax the periodic bonded structure first (§2.2: velocities zeroed after "
                "each step)")
@@ -116,7 +120,13 @@ void add_uniaxial_compression_options(ConfigSchema& schema, mechanics::UniaxialC
       .number("modulus_window", o.modulus_window, "Young's modulus fit: window width as a fraction of the peak stress")
       .range({0.0, 1.0, true, false})
       .integer("threads", o.threads, "OpenMP threads (0 = all cores)")
-      .range({0.0, 1024.0, false, false});
+      .range({0.0, 1024.0, false, false})
+      .text("solver", o.solver,
+            "dynamic: explicit DEM at strain_rate; static: quasi-static linear solves, strength by sequential "
+            "linear analysis (docs/static-solver.md)")
+      .text("solver_backend", o.solver_backend, "Static solver's sparse Cholesky: auto, cholmod or eigen")
+      .integer("max_breaks", o.max_breaks, "Static solver: stop after this many bond breaks (0 = no limit)")
+      .range({0.0, 1e12, false, false});
 }
 
 namespace {

@@ -31,6 +31,8 @@ nlohmann::json oscillatory_shear_summary(const mechanics::OscillatoryShearResult
                    {"bonds", r.bonds},
                    {"time_step", r.time_step},
                    {"steps", r.steps},
+                   {"solver", r.solver},
+                   {"solver_bytes", r.solver_bytes},
                    {"seconds", r.seconds}});
     plate_mean += r.plate_storage_modulus;
     broken += r.broken_bonds;
@@ -53,6 +55,11 @@ nlohmann::json oscillatory_shear_summary(const mechanics::OscillatoryShearResult
                 {"max_shear_force_over_strength", shear_ratio},
                 {"max_tension_over_strength", tension_ratio}};
   j["max_kinetic_to_strain_energy"] = ke;
+  const bool quasi_static = !result.runs.empty() && result.runs.front().solver == "static";
+  j["solver"] = quasi_static ? "static" : "dynamic";
+  if (quasi_static)
+    j["solver_note"] = "static: one linear solve per orientation; no inertia or damping, so the phase angle is 0 by "
+                       "construction";
   if (result.relaxed)
     j["relaxation"] = {{"steps", result.relax.steps},
                        {"converged", result.relax.converged},
@@ -68,6 +75,7 @@ nlohmann::json oscillatory_shear_summary(const mechanics::OscillatoryShearResult
 nlohmann::json uniaxial_compression_summary(const mechanics::UniaxialCompressionResult& r,
                                             const mechanics::UniaxialCompressionOptions& o) {
   nlohmann::json j;
+  j["solver"] = r.solver;
   j["youngs_modulus"] = r.youngs_modulus;
   j["strength"] = r.strength;
   j["broken_bonds"] = r.broken_bonds;
@@ -97,6 +105,14 @@ nlohmann::json uniaxial_compression_summary(const mechanics::UniaxialCompression
   j["bonds"] = r.bonds;
   j["dropped_bonds"] = r.dropped_bonds;
   j["stop_reason"] = r.stop_reason;
+  if (r.solver == "static") {
+    j["static_solver"] = {{"backend", o.solver_backend},
+                          {"poisson_ratio", std::isfinite(r.poisson_ratio) ? nlohmann::json(r.poisson_ratio) : nlohmann::json()},
+                          {"solves", r.solves},
+                          {"factorizations", r.factorizations},
+                          {"matrix_and_factor_bytes", r.solver_bytes},
+                          {"strength_method", "sequential linear analysis (envelope of the bond breaks)"}};
+  }
   j["seconds"] = r.seconds;
   j["particle_steps_per_second"] =
       r.seconds > 0 ? static_cast<double>(r.particles) * static_cast<double>(r.steps) / r.seconds : 0.0;

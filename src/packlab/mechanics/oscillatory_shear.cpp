@@ -13,6 +13,7 @@
 
 #include "packlab/core/error.hpp"
 #include "packlab/dem/material.hpp"
+#include "packlab/mechanics/static_loading.hpp"
 
 namespace packlab::mechanics {
 
@@ -41,6 +42,7 @@ void require_periodic_bonded(const Packing& p) {
 
 ShearRun run_shear_orientation(const Packing& bonded, const ShearOrientation& orientation,
                                const OscillatoryShearOptions& options) {
+  if (options.solver == "static") return run_static_shear_orientation(bonded, orientation, options);
   validate(options);
   require_periodic_bonded(bonded);
   const auto t0 = std::chrono::steady_clock::now();
@@ -72,7 +74,6 @@ ShearRun run_shear_orientation(const Packing& bonded, const ShearOrientation& or
   const double dt = engine.time_step();
   const long S = options.steps_per_cycle;
   const long interval = S / options.samples_per_cycle;
-  const double region_volume = setup.area * setup.region_thickness;
   const long total = S * options.cycles;
   double deflection = 0.0;
   double max_kinetic = 0.0, max_strain_energy = 0.0;
@@ -87,41 +88,12 @@ ShearRun run_shear_orientation(const Packing& bonded, const ShearOrientation& or
     x.strain = deflection / H;
     x.kinetic_energy = d.kinetic_energy;
     x.strain_energy = d.strain_energy;
-    x.region_stress.assign(static_cast<std::size_t>(options.regions), 0.0);
-    const dem::ContactForces f = engine.contact_forces();
-    double plate_force = 0.0;
-    for (std::size_t c = 0; c < f.size(); ++c) {
-      if (f.j[c] < 0) continue;
-      const auto i = static_cast<std::size_t>(f.i[c]), j = static_cast<std::size_t>(f.j[c]);
-      const Vec3& l = f.branch[c];
-      const Vec3& F = f.force[c];
-      // Symmetric x'z' part of 1/2 l (x) F for each end (i: l, -F; j: -l, F: the same product).
-      const double lf = 0.5 * 0.5 * (l.x * F.z + l.z * F.x);
-      if (setup.region[i] >= 0) x.region_stress[static_cast<std::size_t>(setup.region[i])] += lf;
-      if (setup.region[j] >= 0) x.region_stress[static_cast<std::size_t>(setup.region[j])] += lf;
-      const bool iu = setup.role[i] == 2, ju = setup.role[j] == 2;
-      if (ju && !iu) plate_force += F.x;
-      if (iu && !ju) plate_force -= F.x;
-      if (f.kind[c] == dem::ContactForces::bond) {
-        const double len = norm(l);
-        if (len > 0.0) {
-          const Vec3 nrm = l * (1.0 / len);
-          const double fn = dot(F, nrm);  // > 0: pushes j away (compression)
-          const double fs = norm(F - fn * nrm);
-          run.max_bond_tension = std::max(run.max_bond_tension, -fn);
-          run.max_bond_shear_force = std::max(run.max_bond_shear_force, fs);
-        }
-      }
-    }
-    // particle_stress sums l_a F_b with l from the particle to its partner and F the force on
-    // the particle: for i that is l (x) (-F); tension positive. The sum above used l (x) F.
-    double mean = 0.0;
-    for (double& s : x.region_stress) {
-      s = -s / region_volume;
-      mean += s;
-    }
-    x.stress = mean / static_cast<double>(options.regions);
-    x.plate_stress = -plate_force / setup.area;
+    ShearStress st = shear_stress(engine.contact_forces(), setup, options.regions);
+    run.max_bond_tension = std::max(run.max_bond_tension, st.max_bond_tension);
+    run.max_bond_shear_force = std::max(run.max_bond_shear_force, st.max_bond_shear_force);
+    x.region_stress = std::move(st.region_stress);
+    x.stress = st.stress;
+    x.plate_stress = st.plate_stress;
     max_kinetic = std::max(max_kinetic, d.kinetic_energy);
     max_strain_energy = std::max(max_strain_energy, d.strain_energy);
     run.samples.push_back(std::move(x));

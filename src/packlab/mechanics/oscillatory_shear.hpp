@@ -84,6 +84,10 @@ struct OscillatoryShearOptions {
   int threads = 1;
   // Which orientations to run, as shear_orientations() reads them: "all", "x,z", "z:x,x:y".
   std::string orientations = "all";
+  // "dynamic": the oscillating plate above; "static": one linear solve per orientation with the
+  // same set-up, the upper plate displaced by amplitude x H (mechanics/static_loading.hpp).
+  std::string solver = "dynamic";
+  std::string solver_backend = "auto";  // static: "auto", "cholmod" or "eigen"
   // Called now and then: stage ("relax", "z:x", ...), steps done and total of that stage.
   std::function<void(const std::string& stage, long done, long total)> progress;
 };
@@ -140,6 +144,17 @@ struct ShearCycle {
   double plate_storage_modulus = 0.0;  // the same from the plate force [Pa]
 };
 
+// The shear stress sigma_x'z' of a state: per measurement region (the particle-stress sum over
+// the region's particles / region volume, symmetric part, tension positive) and from the force
+// on the upper plate (-F_x' / area); the largest bond tension and shear force [Pa, N].
+struct ShearStress {
+  std::vector<double> region_stress;
+  double stress = 0.0;        // mean over the regions
+  double plate_stress = 0.0;
+  double max_bond_tension = 0.0, max_bond_shear_force = 0.0;
+};
+ShearStress shear_stress(const dem::ContactForces& forces, const ShearSetup& setup, int regions);
+
 // Per-cycle moduli from samples of one cycle taken at phases 2 pi k / n (any offset allowed).
 ShearCycle evaluate_cycle(const std::vector<ShearSample>& samples, int cycle);
 
@@ -169,6 +184,8 @@ struct ShearRun {
   double time_step = 0.0;
   long steps = 0;
   double seconds = 0.0;
+  std::string solver = "dynamic";
+  std::size_t solver_bytes = 0;  // static: matrix and factor memory [B]
 };
 
 // One orientation of an already relaxed periodic bonded packing.

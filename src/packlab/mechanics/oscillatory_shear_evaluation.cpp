@@ -11,6 +11,45 @@
 
 namespace packlab::mechanics {
 
+ShearStress shear_stress(const dem::ContactForces& f, const ShearSetup& setup, int regions) {
+  ShearStress out;
+  out.region_stress.assign(static_cast<std::size_t>(regions), 0.0);
+  double plate_force = 0.0;
+  for (std::size_t c = 0; c < f.size(); ++c) {
+    if (f.j[c] < 0) continue;
+    const auto i = static_cast<std::size_t>(f.i[c]), j = static_cast<std::size_t>(f.j[c]);
+    const Vec3& l = f.branch[c];
+    const Vec3& F = f.force[c];
+    // Symmetric x'z' part of 1/2 l (x) F for each end (i: l, -F; j: -l, F: the same product).
+    const double lf = 0.5 * 0.5 * (l.x * F.z + l.z * F.x);
+    if (setup.region[i] >= 0) out.region_stress[static_cast<std::size_t>(setup.region[i])] += lf;
+    if (setup.region[j] >= 0) out.region_stress[static_cast<std::size_t>(setup.region[j])] += lf;
+    const bool iu = setup.role[i] == 2, ju = setup.role[j] == 2;
+    if (ju && !iu) plate_force += F.x;
+    if (iu && !ju) plate_force -= F.x;
+    if (f.kind[c] == dem::ContactForces::bond) {
+      const double len = norm(l);
+      if (len > 0.0) {
+        const Vec3 nrm = l * (1.0 / len);
+        const double fn = dot(F, nrm);  // > 0: pushes j away (compression)
+        const double fs = norm(F - fn * nrm);
+        out.max_bond_tension = std::max(out.max_bond_tension, -fn);
+        out.max_bond_shear_force = std::max(out.max_bond_shear_force, fs);
+      }
+    }
+  }
+  // particle_stress sums l_a F_b with l from the particle to its partner and F the force on
+  // the particle: for i that is l (x) (-F); tension positive. The sum above used l (x) F.
+  const double region_volume = setup.area * setup.region_thickness;
+  for (double& s : out.region_stress) {
+    s = -s / region_volume;
+    out.stress += s;
+  }
+  out.stress /= static_cast<double>(regions);
+  out.plate_stress = -plate_force / setup.area;
+  return out;
+}
+
 ShearCycle evaluate_cycle(const std::vector<ShearSample>& samples, int cycle) {
   ShearCycle c;
   c.cycle = cycle;

@@ -81,6 +81,8 @@ void validate(const OscillatoryShearOptions& o) {
           "steps_per_cycle", static_cast<double>(o.steps_per_cycle),
           fmt::format("a multiple of samples_per_cycle ({})", o.samples_per_cycle));
   (void)shear_orientations(o.orientations);
+  if (o.solver != "dynamic" && o.solver != "static")
+    fail_input(fmt::format("solver = {}: must be 'dynamic' or 'static'", o.solver));
 }
 
 dem::EngineConfig shear_engine_config(const OscillatoryShearOptions& o) {

@@ -10,6 +10,7 @@
 
 #include "packlab/core/error.hpp"
 #include "packlab/mechanics/row_columns.hpp"
+#include "packlab/mechanics/static_loading.hpp"
 
 namespace packlab::mechanics {
 
@@ -26,6 +27,7 @@ Columns curve_columns(const std::vector<UniaxialCompressionPoint>& curve) {
 }
 
 UniaxialCompressionResult run_uniaxial_compression(const Packing& bonded_model, const UniaxialCompressionOptions& options) {
+  if (options.solver == "static") return run_static_uniaxial_compression(bonded_model, options);
   const auto t0 = std::chrono::steady_clock::now();
   UniaxialCompressionResult result;
   UniaxialCompressionSpecimen specimen = prepare_uniaxial_compression(bonded_model, options, result);
@@ -122,6 +124,7 @@ UniaxialCompressionResult run_uniaxial_compression(const Packing& bonded_model, 
     if (p.stress > 0.2 * peak && p.strain <= result.strain_at_peak && p.strain_energy > 0.0)
       result.max_kinetic_ratio = std::max(result.max_kinetic_ratio, p.kinetic_energy / p.strain_energy);
   result.breaks = engine.bond_breaks();
+  for (const auto& b : result.breaks) result.break_strain.push_back(result.plate_speed * (b.time - t_start) / result.height);
   result.broken_bonds = result.breaks.size();
   result.model = engine.packing();  // fixed = substrate and glued plate layers
   result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();

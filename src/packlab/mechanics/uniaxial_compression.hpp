@@ -44,6 +44,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <functional>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -95,6 +96,11 @@ struct UniaxialCompressionOptions {
   double modulus_lower = 0.05;     // see the header comment
   double modulus_window = 0.25;
   int threads = 1;
+  // "dynamic": the explicit DEM run above; "static": the quasi-static solver with sequential
+  // linear analysis (mechanics/static_loading.hpp, docs/static-solver.md).
+  std::string solver = "dynamic";
+  std::string solver_backend = "auto";  // static: "auto", "cholmod" or "eigen"
+  long max_breaks = 0;                  // static: stop after this many bond breaks (0 = no limit)
   // Called at each curve point (progress); may be empty.
   std::function<void(const UniaxialCompressionPoint&)> on_point;
   void validate() const;  // InputError naming key, value and allowed range
@@ -119,6 +125,12 @@ struct UniaxialCompressionResult {
   std::string stop_reason;
   std::vector<UniaxialCompressionSnapshot> snapshots;
   std::vector<dem::BondBreak> breaks;  // bond index = index into `model.bonds`
+  std::vector<double> break_strain;    // the strain at each break [-]
+  std::string solver = "dynamic";      // which solver ran the test
+  double poisson_ratio = std::numeric_limits<double>::quiet_NaN();  // static, open sides: -eps_lateral / eps_axial
+  std::size_t solves = 0;              // static: linear solves
+  std::size_t factorizations = 0;      // static: matrix factorizations
+  std::size_t solver_bytes = 0;        // static: matrix and factor memory [B]
   Packing model;                       // the model as run (final positions, bond states)
   double seconds = 0.0;
 };

@@ -51,6 +51,12 @@ void UniaxialCompressionOptions::validate() const {
   require(strain_rate > 0.0 && std::isfinite(strain_rate), "strain_rate", strain_rate, "> 0 1/s");
   if (sides != "periodic" && sides != "open") fail_input(fmt::format("sides = {}: must be 'periodic' or 'open'", sides));
   if (plate != "glued" && plate != "contact") fail_input(fmt::format("plate = {}: must be 'glued' or 'contact'", plate));
+  if (solver != "dynamic" && solver != "static")
+    fail_input(fmt::format("solver = {}: must be 'dynamic' or 'static'", solver));
+  if (solver == "static" && plate != "glued")
+    fail_input("plate = contact with solver = static: the static solver needs the glued plate (a contact plate "
+               "touches a rough top at a few points and takes no load until it has pressed in, which a linear "
+               "solve about the start cannot follow)");
   for (double s : snapshot_strains)
     require(s > 0.0 && s <= max_strain, "snapshot_strains", s, fmt::format("in (0, max_strain = {:g}]", max_strain));
   if (types.empty()) fail_input("compression test: no particle type parameters given");

@@ -12,6 +12,17 @@
 //   static bool failed(const State&);           failed but still relaxing (its strain is not
 //                                               reported)
 //   static BondForce evaluate(const ContactGeometry&, const Params&, State&);
+// and, for the static solver (mechanics/static_stiffness.hpp),
+//   static BondTangent tangent(const ContactGeometry&, const Params&);
+//                                               the intact bond's stiffnesses (linear laws:
+//                                               exact; others: at the current state)
+//   static double failure_ratio(const BondLoad&, const ContactGeometry&, const Params&);
+//                                               the largest of (stress / strength) over the
+//                                               law's breakage criteria for that load: the
+//                                               bond fails when it reaches 1; the criteria must
+//                                               be positively homogeneous of degree one in the
+//                                               load (scaling the load by s scales the ratio by
+//                                               s), which sequential linear analysis relies on
 // ContactGeometry::overlap is negative when the bonded particles are apart.
 #pragma once
 
@@ -34,6 +45,24 @@ struct BondForce {
   double energy;     // [J]
   bool failed;       // a breakage criterion was met this step
   bool broken;       // the bond is gone from this step on (the force is then zero)
+};
+
+// An intact bond linearized (static solver): force on j dF = -normal du_n n - shear du_t for the
+// relative displacement du of the contact points, moment on j dM = -torsion dtheta_n - bending
+// dtheta_t for the relative rotation dtheta of j against i (n: along the bond, t: across it).
+struct BondTangent {
+  double normal = 0.0;   // [N/m]
+  double shear = 0.0;    // [N/m]
+  double torsion = 0.0;  // [N m/rad]
+  double bending = 0.0;  // [N m/rad]
+};
+
+// What a bond carries, as the breakage criteria read it.
+struct BondLoad {
+  double normal_force = 0.0;  // positive = tension (the bond stretched) [N]
+  double shear_force = 0.0;   // magnitude [N]
+  double torsion = 0.0;       // magnitude of the twisting moment [N m]
+  double bending = 0.0;       // magnitude of the bending moment [N m]
 };
 
 }  // namespace packlab::dem

@@ -32,6 +32,16 @@ struct ContactBond {
   static constexpr bool uses_rest_length = false;  // needs the bond's initial length > 0
   static bool failed(const State& /*s*/) { return false; }
 
+  static BondTangent tangent(const ContactGeometry& /*g*/, const Params& p) {
+    return {p.normal_stiffness, p.shear_stiffness, 0.0, 0.0};
+  }
+  // Tension against F_nB, shear force against F_sB (the criteria of evaluate()).
+  static double failure_ratio(const BondLoad& load, const ContactGeometry& /*g*/, const Params& p) {
+    // A strength of 0 fails at any load (and 0 / 0 is not a ratio).
+    auto ratio = [](double value, double strength) { return value > 0.0 ? value / strength : 0.0; };
+    return std::max(ratio(load.normal_force, p.normal_strength), ratio(load.shear_force, p.shear_strength));
+  }
+
   static BondForce evaluate(const ContactGeometry& g, const Params& p, State& shear_force) {
     const Vec3& n = g.normal;
     const double normal_force = p.normal_stiffness * g.overlap;  // negative = tension

@@ -63,6 +63,27 @@ struct ElasticBond {
   static constexpr bool uses_rest_length = true;  // needs the bond's initial length > 0
   static bool failed(const State& s) { return s.failed_at >= 0.0; }
 
+  // eq. 11 and the moment increments: E A / L0, G A / L0, G J / L0, E I / L0.
+  static BondTangent tangent(const ContactGeometry& g, const Params& p) {
+    const double rb = bond_radius(p, g.radius_i, g.radius_j);
+    const double area = std::numbers::pi * rb * rb;
+    const double inertia = 0.25 * area * rb * rb;
+    const double shear_modulus = p.youngs_modulus / (2.0 * (1.0 + p.poisson_ratio));
+    const double l0 = g.rest_length;
+    return {p.youngs_modulus * area / l0, shear_modulus * area / l0, shear_modulus * 2.0 * inertia / l0,
+            p.youngs_modulus * inertia / l0};
+  }
+  // eq. 16 (for stretched bonds only unless compressive_breakage) and eq. 17, as in evaluate().
+  static double failure_ratio(const BondLoad& load, const ContactGeometry& g, const Params& p) {
+    const double rb = bond_radius(p, g.radius_i, g.radius_j);
+    const double area = std::numbers::pi * rb * rb;
+    const double inertia = 0.25 * area * rb * rb;
+    const double sigma = std::abs(load.normal_force) / area + load.bending * rb / inertia;
+    const double tau = load.shear_force / area + load.torsion * rb / (2.0 * inertia);
+    const bool normal_applies = p.compressive_breakage || load.normal_force > 0.0;
+    return std::max(normal_applies ? sigma / p.normal_strength : 0.0, tau / p.shear_strength);
+  }
+
   static BondForce evaluate(const ContactGeometry& g, const Params& p, State& s) {
     BondForce out{};
     const double factor = s.failed_at < 0.0 ? 1.0 : 1.0 - (g.time - s.failed_at) / p.relaxation_time;

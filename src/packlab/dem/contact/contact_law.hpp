@@ -18,6 +18,10 @@
 //                                               called for every listed pair closer than
 //                                               r_i + r_j + reach(params); the geometry's
 //                                               overlap is negative for a pair apart
+// and, optionally (the static solver, mechanics/static_stiffness.hpp, needs it),
+//   static PairTangent tangent(const ContactGeometry&, const Params&);
+//                                               the normal and tangential stiffness of a
+//                                               touching contact linearized at its overlap
 // The engine instantiates one pair loop per law; adding a law touches no loop
 // (docs/engine.md, "Adding a contact law").
 #pragma once
@@ -60,6 +64,13 @@ struct PairForce {
   double normal_force;  // magnitude of the normal part (positive = compressive) [N]
   double energy;        // elastic energy stored in the contact [J]
   double stiffness;     // current tangent stiffness, for the contacts time-step rule [N/m]
+};
+
+// A contact law linearized about the current overlap (sticking, no slip): dF_n = -normal du_n,
+// dF_t = -shear du_t for the relative displacement du of the contact points.
+struct PairTangent {
+  double normal = 0.0;  // [N/m]
+  double shear = 0.0;   // [N/m]
 };
 
 // Carries a tangential vector from the last step into the current contact plane: removes its

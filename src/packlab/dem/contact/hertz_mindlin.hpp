@@ -48,6 +48,13 @@ struct HertzMindlin {
     return 2.0 * p.effective_youngs_modulus * std::sqrt(r_eff * 0.01 * radius);
   }
 
+  // S_n and S_t at the current overlap (the tangent of F_n = 4/3 E* sqrt(R*) delta^3/2).
+  static PairTangent tangent(const ContactGeometry& g, const Params& p) {
+    const double r_eff = g.radius_i * g.radius_j / (g.radius_i + g.radius_j);
+    const double root = std::sqrt(r_eff * std::max(0.0, g.overlap));
+    return {2.0 * p.effective_youngs_modulus * root, 8.0 * p.effective_shear_modulus * root};
+  }
+
   static PairForce evaluate(const ContactGeometry& g, const Params& p, History& tangential_overlap) {
     const Vec3& n = g.normal;
     const double r_eff = g.radius_i * g.radius_j / (g.radius_i + g.radius_j);

@@ -26,6 +26,10 @@ struct LinearContact {
     return std::max(p.normal_stiffness, p.shear_stiffness);
   }
 
+  static PairTangent tangent(const ContactGeometry& /*g*/, const Params& p) {
+    return {p.normal_stiffness, p.shear_stiffness};
+  }
+
   static PairForce evaluate(const ContactGeometry& g, const Params& p, History& shear_force) {
     const Vec3& n = g.normal;
     const double normal_force = p.normal_stiffness * g.overlap;  // eq. 1

@@ -1,0 +1,225 @@
+// Uniaxial compression with the quasi-static solver: Young's modulus from one linear solve and
+// the strength by sequential linear analysis (static_loading.hpp).
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <limits>
+
+#include "packlab/core/error.hpp"
+#include "packlab/mechanics/static_loading.hpp"
+
+namespace packlab::mechanics {
+
+namespace {
+
+constexpr double nan = std::numeric_limits<double>::quiet_NaN();
+
+// Least-squares slope of u_a against x_a over the free particles: the lateral strain.
+double lateral_strain(const Packing& model, const std::vector<double>& q, int axis) {
+  double sx = 0.0, su = 0.0, sxx = 0.0, sxu = 0.0, count = 0.0;
+  for (std::size_t k = 0; k < model.size(); ++k) {
+    if (model.fixed[k]) continue;
+    const double x = model.position[k][axis], u = q[6 * k + static_cast<std::size_t>(axis)];
+    sx += x;
+    su += u;
+    sxx += x * x;
+    sxu += x * u;
+    count += 1.0;
+  }
+  const double var = sxx - sx * sx / count;
+  return var > 0.0 ? (sxu - sx * su / count) / var : nan;
+}
+
+}  // namespace
+
+UniaxialCompressionResult run_static_uniaxial_compression(const Packing& bonded_model,
+                                                          const UniaxialCompressionOptions& options) {
+  const auto t0 = std::chrono::steady_clock::now();
+  UniaxialCompressionResult result;
+  result.solver = "static";
+  UniaxialCompressionSpecimen specimen = prepare_uniaxial_compression(bonded_model, options, result);
+  Packing& model = specimen.model;
+  const std::vector<std::uint8_t>& grip = specimen.grip;
+  const std::size_t n = model.size();
+
+  dem::EngineConfig config;
+  config.contact_law = "hertz_mindlin";
+  config.types = options.types;
+  config.bond_materials = options.bond_materials;
+  config.threads = options.threads;
+  const StaticLinks links = linearize_links(model, config);
+  StaticSolverOptions solver_options;
+  solver_options.backend = options.solver_backend;
+  solver_options.threads = options.threads;
+  StaticSolver solver(links, model.fixed, solver_options);
+
+  // Unit strain: the glued particles move down by H0, the substrate stays.
+  const DisplacementGradient no_gradient{};
+  std::vector<double> q(6 * n, 0.0);
+  for (std::size_t k = 0; k < n; ++k)
+    if (grip[k]) q[6 * k + 2] = -result.height;
+  std::vector<double> unit_q = q;
+
+  const auto& params = options.bond_materials;
+  auto bond_params = [&](int material) -> const dem::ElasticBond::Params& {
+    return params.size() == 1 ? params[0] : params[static_cast<std::size_t>(material)];
+  };
+  // Plate force (compressive positive) and strain energy at unit strain.
+  auto plate_force = [&](const std::vector<double>& qs) {
+    double f = 0.0;
+    for (std::size_t k = 0; k < links.size(); ++k) {
+      if (!solver.active(k)) continue;
+      const auto i = static_cast<std::size_t>(links.i[k]), j = static_cast<std::size_t>(links.j[k]);
+      if (grip[i] == grip[j]) continue;
+      const double fz = link_response(links, k, qs, no_gradient).force_on_j.z;
+      f += grip[j] ? fz : -fz;
+    }
+    return f;
+  };
+  auto strain_energy = [&](const std::vector<double>& qs) {
+    double e = 0.0;
+    for (std::size_t k = 0; k < links.size(); ++k)
+      if (solver.active(k)) e += link_response(links, k, qs, no_gradient).energy;
+    return e;
+  };
+
+  std::vector<double> pending = options.snapshot_strains;
+  std::sort(pending.begin(), pending.end());
+  std::size_t next_snapshot = 0;
+  auto snapshot = [&](double requested, double strain, double stress) {
+    UniaxialCompressionSnapshot s;
+    s.requested_strain = requested;
+    s.strain = strain;
+    s.stress = stress;
+    std::vector<double> qs(unit_q.size());
+    for (std::size_t k = 0; k < qs.size(); ++k) qs[k] = strain * unit_q[k];
+    s.bond_strain.assign(model.bonds.size(), nan);
+    for (std::size_t k = 0; k < links.size(); ++k)
+      if (links.bond[k] >= 0 && solver.active(k))
+        s.bond_strain[static_cast<std::size_t>(links.bond[k])] =
+            link_response(links, k, qs, no_gradient).normal_displacement /
+            model.bonds.rest_length[static_cast<std::size_t>(links.bond[k])];
+    s.particle_stress = dem::particle_stress(link_forces(links, qs, no_gradient, solver.active_links()), model);
+    result.snapshots.push_back(std::move(s));
+  };
+
+  auto add_point = [&](double strain, double stress_per_strain, double energy_per_strain2) {
+    UniaxialCompressionPoint p;
+    p.step = static_cast<long>(result.curve.size());
+    p.time = nan;
+    p.strain = strain;
+    p.displacement = strain * result.height;
+    p.stress = strain * stress_per_strain;
+    p.force = p.stress * result.area;
+    p.strain_energy = strain * strain * energy_per_strain2;
+    p.broken_bonds = result.breaks.size();
+    result.curve.push_back(p);
+    if (options.on_point) options.on_point(p);
+  };
+
+  double peak = 0.0, last_stress1 = 0.0;
+  result.stop_reason = "reached max_strain";
+  add_point(0.0, 0.0, 0.0);
+  for (;;) {
+    q = unit_q;
+    solver.solve(q, no_gradient);
+    unit_q = q;
+    const double stress1 = plate_force(q) / result.area;  // stress at unit strain
+    last_stress1 = stress1;
+    if (!result.breaks.empty()) {
+      // The load drop at the last break's strain: stop once past the peak below stop_drop x peak.
+      const double strain = result.break_strain.back();
+      if (options.stop_drop > 0.0 && strain >= result.strain_at_peak && strain * stress1 < options.stop_drop * peak) {
+        add_point(strain, stress1, strain_energy(q));
+        result.stop_reason = fmt::format("stress fell below {:g} x peak after the peak", options.stop_drop);
+        break;
+      }
+    }
+    if (result.breaks.empty()) {
+      result.youngs_modulus = stress1;
+      if (options.sides == "open") {
+        const double lateral = 0.5 * (lateral_strain(model, q, 0) + lateral_strain(model, q, 1));
+        result.poisson_ratio = lateral / 1.0;  // axial strain -1 (compression), lateral > 0
+      }
+    }
+    // The next bonds to fail: the largest failure ratio at unit strain.
+    double ratio = 0.0;
+    std::vector<std::size_t> critical;
+    for (std::size_t k = 0; k < links.size(); ++k) {
+      if (links.bond[k] < 0 || !solver.active(k)) continue;
+      const LinkResponse r = link_response(links, k, q, no_gradient);
+      const double rk = dem::ElasticBond::failure_ratio(
+          r.load, links.geometry[k], bond_params(model.bonds.material[static_cast<std::size_t>(links.bond[k])]));
+      if (rk > ratio * (1.0 + 1e-12)) {
+        ratio = rk;
+        critical.assign(1, k);
+      } else if (rk >= ratio * (1.0 - 1e-12) && rk > 0.0) {
+        critical.push_back(k);  // ties break together
+      }
+    }
+    const double break_strain = ratio > 0.0 ? 1.0 / ratio : std::numeric_limits<double>::infinity();
+    const double energy1 = strain_energy(q);
+    while (next_snapshot < pending.size() && pending[next_snapshot] < break_strain) {
+      snapshot(pending[next_snapshot], pending[next_snapshot], pending[next_snapshot] * stress1);
+      ++next_snapshot;
+    }
+    if (break_strain > options.max_strain) {
+      add_point(options.max_strain, stress1, energy1);
+      peak = std::max(peak, options.max_strain * stress1);
+      if (peak == options.max_strain * stress1) result.strain_at_peak = options.max_strain;
+      break;
+    }
+    add_point(break_strain, stress1, energy1);
+    const double stress = break_strain * stress1;
+    if (stress > peak) {
+      peak = stress;
+      result.strain_at_peak = break_strain;
+    }
+    for (std::size_t k : critical) {
+      const auto b = static_cast<std::size_t>(links.bond[k]);
+      solver.deactivate(k);
+      model.bonds.state[b] = 1;
+      const Vec3 mid = model.position[static_cast<std::size_t>(links.i[k])] + 0.5 * links.branch[k];
+      result.breaks.push_back({b, nan, model.box.wrap(mid)});
+      result.break_strain.push_back(break_strain);
+    }
+    result.curve.back().broken_bonds = result.breaks.size();
+    if (options.max_breaks > 0 && static_cast<long>(result.breaks.size()) >= options.max_breaks) {
+      result.stop_reason = fmt::format("{} bonds broke (max_breaks)", result.breaks.size());
+      break;
+    }
+    bool any_bond = false;
+    for (std::size_t k = 0; k < links.size() && !any_bond; ++k) any_bond = links.bond[k] >= 0 && solver.active(k);
+    if (!any_bond) {
+      result.stop_reason = "every bond broke";
+      break;
+    }
+  }
+  // Snapshots past the end: the network as it stands.
+  while (next_snapshot < pending.size()) {
+    const double s = pending[next_snapshot++];
+    snapshot(s, s, s * last_stress1);
+  }
+  result.strength = peak;
+  result.broken_bonds = result.breaks.size();
+  result.modulus.youngs_modulus = result.youngs_modulus;
+  result.modulus.intercept = 0.0;
+  result.modulus.strain_begin = 0.0;
+  result.modulus.strain_end = result.curve.size() > 1 ? result.curve[1].strain : 0.0;
+  const StaticSolverStats& st = solver.stats();
+  result.solves = static_cast<std::size_t>(st.solves);
+  result.factorizations = static_cast<std::size_t>(st.factorizations);
+  result.solver_bytes = st.matrix_bytes + st.factor_bytes;
+  result.steps = st.solves;
+  // The model as loaded at the last point: positions displaced, broken bonds marked.
+  const double last = result.curve.back().strain;
+  for (std::size_t k = 0; k < n; ++k)
+    model.position[k] += last * Vec3{unit_q[6 * k], unit_q[6 * k + 1], unit_q[6 * k + 2]};
+  result.model = std::move(model);
+  result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  return result;
+}
+
+}  // namespace packlab::mechanics

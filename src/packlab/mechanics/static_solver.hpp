@@ -1,0 +1,84 @@
+// The quasi-static solver of a bonded-particle model: K_ff q_f = -K_fp q_p - B^T D (H d) for the
+// free particles' displacements and rotations (static_stiffness.hpp), by a sparse Cholesky
+// factorization: CHOLMOD's supernodal LL^T (SuiteSparse, with a fill-reducing ordering and
+// BLAS-3 kernels) when packlab was built with it, Eigen's simplicial LL^T (AMD ordering)
+// otherwise or on request. docs/static-solver.md compares the two.
+//
+// Links switched off after the factorization (sequential linear analysis removing broken
+// bonds) change the matrix by a low-rank term: the next solves run preconditioned conjugate
+// gradients on the new matrix with the old factor as the preconditioner (in exact arithmetic
+// r + 1 iterations for a change of rank r), and the matrix is factorized anew when that takes
+// more than `refactor_iterations`.
+//
+// Particles with no links at all, and mechanisms of the network (a particle held by one contact
+// bond can spin about it), make K singular: a diagonal shift of `regularization` x each diagonal
+// entry (x the mean entry of its kind, translation or rotation, where it is zero) keeps it
+// positive definite. The loads are orthogonal to those zero-energy modes (K is
+// positive semi-definite), so they take no part in the solution and no link force changes.
+#pragma once
+
+#include <cstddef>
+#include <memory>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "packlab/mechanics/static_stiffness.hpp"
+
+namespace packlab::mechanics {
+
+struct StaticSolverOptions {
+  std::string backend = "auto";   // "auto" (CHOLMOD when built with it), "cholmod", "eigen"
+  double regularization = 1e-12;  // relative diagonal shift [-]
+  double tolerance = 1e-10;       // PCG: relative residual |r| / |f|
+  int refactor_iterations = 40;   // PCG iterations above which the matrix is factorized anew
+  int threads = 1;                // BLAS threads of the CHOLMOD factorization
+};
+
+// The backends this build has ("cholmod", "eigen").
+std::vector<std::string> static_solver_backends();
+
+struct StaticSolverStats {
+  std::string backend;
+  std::size_t unknowns = 0;
+  std::size_t matrix_nonzeros = 0;  // stored (lower triangle)
+  std::size_t factor_nonzeros = 0;
+  std::size_t matrix_bytes = 0, factor_bytes = 0;
+  int factorizations = 0;
+  long solves = 0;
+  long pcg_iterations = 0;
+  double assemble_seconds = 0.0, factor_seconds = 0.0, solve_seconds = 0.0;
+};
+
+class StaticSolver {
+ public:
+  // `prescribed`: per particle, 1 when its displacement and rotation are given.
+  StaticSolver(const StaticLinks& links, std::span<const std::uint8_t> prescribed, const StaticSolverOptions& options);
+  ~StaticSolver();
+  StaticSolver(const StaticSolver&) = delete;
+  StaticSolver& operator=(const StaticSolver&) = delete;
+
+  // Solves for the free particles. q (6 per particle: u, theta): the prescribed particles'
+  // entries are read, the free ones written.
+  void solve(std::span<double> q, const DisplacementGradient& gradient);
+  // Takes link k out of the model (a broken bond) from the next solve on.
+  void deactivate(std::size_t k);
+  bool active(std::size_t k) const { return active_[k] != 0; }
+  const std::vector<std::uint8_t>& active_links() const { return active_; }
+  const StaticLinks& links() const { return links_; }
+  const StaticSolverStats& stats() const { return stats_; }
+
+  struct Factor;  // the factorization of one backend (static_solver.cpp)
+
+ private:
+  void factorize();
+  const StaticLinks& links_;
+  StaticSolverOptions options_;
+  std::vector<std::uint8_t> active_;
+  StiffnessAssembly assembly_;
+  std::unique_ptr<Factor> factor_;
+  bool matrix_changed_ = false;  // links deactivated since the last factorization
+  StaticSolverStats stats_;
+};
+
+}  // namespace packlab::mechanics

@@ -1,0 +1,333 @@
+// The quasi-static solver (mechanics/static_solver.hpp, static_loading.hpp): closed forms of
+// lattices (shear between plates, the periodic stiffness tensor, compression of beam-bond
+// columns), Clapeyron's theorem, sequential linear analysis of a uniform column, agreement with
+// the dynamic tests on disordered models, the two factorization backends, the preconditioned
+// re-solve after bonds break, and bad input.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+#include <numbers>
+
+#include "../test_packings.hpp"
+#include "packlab/core/error.hpp"
+#include "packlab/core/random.hpp"
+#include "packlab/generate/bonding.hpp"
+#include "packlab/generate/fba.hpp"
+#include "packlab/generate/lattice.hpp"
+#include "packlab/mechanics/opal_materials.hpp"
+#include "packlab/mechanics/static_loading.hpp"
+
+using namespace packlab;
+using namespace packlab::mechanics;
+
+namespace {
+
+constexpr double inf = std::numeric_limits<double>::infinity();
+constexpr double r0 = 0.25e-6;           // shear tests' particles
+constexpr double r = 7.5e-9;             // the opal paper's 15 nm particles
+constexpr double E = 6.53e9, nu = 0.17;  // silica bonds
+
+OscillatoryShearOptions shear_options(const std::string& solver, const std::string& orientations = "z:x") {
+  OscillatoryShearOptions o;
+  o.stiffness_rule = "contact";
+  o.normal_stiffness = 100.0;
+  o.shear_stiffness = 10.0;
+  o.normal_strength = o.shear_strength = inf;
+  o.cycles = 2;
+  o.steps_per_cycle = 4000;
+  o.samples_per_cycle = 40;
+  o.orientations = orientations;
+  o.threads = 1;
+  o.solver = solver;
+  return o;
+}
+
+UniaxialCompressionOptions compression_options(const std::string& solver, double strength = inf) {
+  OpalMaterials m;
+  m.silica_youngs_modulus = E;
+  m.silica_poisson_ratio = nu;
+  m.silica_strength = strength;
+  UniaxialCompressionOptions o;
+  o.types = opal_particle_types(m);
+  o.bond_materials = opal_bond_materials(m);
+  o.threads = 1;
+  o.solver = solver;
+  return o;
+}
+
+// The constrained modulus of a periodic simple cubic column with bonds to 1.75 d (axial, face
+// and body diagonals): see tests/mechanics/test_uniaxial_compression.cpp.
+double sc_modulus() {
+  const double G = E / (2 * (1 + nu));
+  return std::numbers::pi / 4 * (E + std::sqrt(2.0) * (E + G) + 4 * (E + 2 * G) / (3 * std::sqrt(3.0)));
+}
+
+// An FCC network of contact bonds with a deterministic 30 % of its bonds removed.
+Packing diluted_fcc(double keep) {
+  Packing p = test::bonded_lattice(generate::LatticeType::fcc, {3, 3, 3}, r0, 1.01);
+  Bonds kept;
+  Random rng(7);
+  for (std::size_t b = 0; b < p.bonds.size(); ++b)
+    if (rng.uniform() < keep) kept.add(p.bonds.i[b], p.bonds.j[b], p.bonds.image[b], 0, p.bonds.rest_length[b]);
+  p.bonds = kept;
+  return p;
+}
+
+// A pore-free force-biased packing (porosity 0.38), periodic x, y, elastic bonds to 1.75 d: the
+// opal paper's bulk sample at 300 particles.
+Packing random_bonded_sample(long n, unsigned seed) {
+  const double d = 2 * r;
+  Box box;
+  box.periodic = {true, true, false};
+  const double a = std::cbrt(static_cast<double>(n) * std::numbers::pi / 6 * d * d * d / 0.62 / 1.5);
+  box.length = {a, a, 1.5 * a};
+  generate::FbaParams fp;
+  fp.target_porosity = 0.38;
+  Random rng(seed);
+  const std::vector<double> radii = generate::fba_class_radii(n, generate::SizeClasses{}, rng);
+  Packing p = generate::fba_pack(box, radii, fp, rng).packing;
+  generate::BondingOptions bo;
+  bo.cutoff_ratio = 1.75;
+  generate::add_bonds(p, bo);
+  return p;
+}
+
+dem::EngineConfig contact_bond_config(double kn, double ks) {
+  dem::EngineConfig c;
+  c.contact_law = "linear";
+  c.stiffness_rule = dem::StiffnessRule::contact;
+  c.types = {dem::Material{.normal_stiffness = kn, .shear_stiffness = ks}};
+  c.bond_materials = dem::BondMaterialList<dem::ContactBond>{dem::ContactBond::Params{kn, ks, inf, inf}};
+  return c;
+}
+
+}  // namespace
+
+// The closed form of tests/mechanics/test_oscillatory_shear.cpp (n layers of a simple cubic
+// network of contact bonds between rigid plates): G = k_s n / ((2n + 1) d), in all six
+// orientations, from the region stresses and from the plate force, phase angle zero.
+TEST(StaticSolver, SimpleCubicShearBetweenPlatesMatchesTheClosedForm) {
+  const Packing sc = test::bonded_lattice(generate::LatticeType::sc, {4, 4, 4}, r0, 1.01);
+  OscillatoryShearOptions o = shear_options("static", "all");
+  o.regions = 1;
+  const OscillatoryShearResult res = run_oscillatory_shear(sc, o);
+  const double d = 2.0 * r0, n = 4.0;
+  const double expected = o.shear_stiffness * n / ((2.0 * n + 1.0) * d);
+  ASSERT_EQ(res.runs.size(), 6u);
+  for (const auto& run : res.runs) {
+    EXPECT_EQ(run.solver, "static");
+    EXPECT_NEAR(run.storage_modulus, expected, 1e-8 * expected) << orientation_name(run.orientation);
+    EXPECT_NEAR(run.plate_storage_modulus, expected, 1e-8 * expected) << orientation_name(run.orientation);
+    EXPECT_LT(std::abs(run.phase_angle), 1e-12);
+  }
+}
+
+// Periodic simple cubic lattice of contact bonds under affine strain, rotations free: a bond
+// along z sheared by gamma d has both ends turning by gamma / 2, which halves its shear
+// (G = k_s / (2 d) = k_s / (4 r)); along an axis only the normal springs act (C11 = k_n / d), and
+// nothing couples the axes (C12 = 0, Poisson's ratio 0, E = C11).
+TEST(StaticSolver, PeriodicSimpleCubicLatticeStiffnessTensorIsTheClosedForm) {
+  const Packing sc = test::bonded_lattice(generate::LatticeType::sc, {3, 3, 3}, r0, 1.01);
+  const double kn = 100.0, ks = 10.0, d = 2.0 * r0;
+  const PeriodicStiffness c = periodic_stiffness(sc, contact_bond_config(kn, ks));
+  for (int a = 0; a < 3; ++a) {
+    EXPECT_NEAR(c.stiffness[a][a], kn / d, 1e-8 * kn / d);
+    EXPECT_NEAR(c.stiffness[a + 3][a + 3], ks / (2.0 * d), 1e-8 * ks / d);
+    EXPECT_NEAR(c.stiffness[a][(a + 1) % 3], 0.0, 1e-8 * kn / d);
+    EXPECT_NEAR(c.youngs_modulus[static_cast<std::size_t>(a)], kn / d, 1e-8 * kn / d);
+    EXPECT_NEAR(c.poisson_ratio[static_cast<std::size_t>(a)], 0.0, 1e-8);
+  }
+  EXPECT_NEAR(c.shear_modulus, ks / (2.0 * d), 1e-8 * ks / d);
+}
+
+// Elastic beam bonds along the axes only (cutoff 1.01 d), radius ratio 1: each column carries
+// E_b pi r^2 / d per gap on a cross-section d^2, so E = (pi / 4) E_b; the diagonal bonds of a
+// 1.75 d cutoff add the closed form of the dynamic test. To solver tolerance.
+TEST(StaticSolver, SimpleCubicColumnsOfBeamBondsGiveTheClosedFormModulus) {
+  UniaxialCompressionOptions o = compression_options("static");
+  o.max_strain = 0.003;
+  const UniaxialCompressionResult axial =
+      run_uniaxial_compression(test::bonded_lattice(generate::LatticeType::sc, {3, 3, 8}, r, 1.01), o);
+  EXPECT_EQ(axial.solver, "static");
+  EXPECT_NEAR(axial.height, 5 * 2 * r, 1e-9 * r);
+  EXPECT_NEAR(axial.youngs_modulus, std::numbers::pi / 4 * E, 1e-8 * E);
+  EXPECT_EQ(axial.broken_bonds, 0u);
+  EXPECT_EQ(axial.stop_reason, "reached max_strain");
+  EXPECT_NEAR(axial.curve.back().stress, std::numbers::pi / 4 * E * 0.003, 1e-8 * E * 0.003);
+
+  const UniaxialCompressionResult diagonal =
+      run_uniaxial_compression(test::bonded_lattice(generate::LatticeType::sc, {3, 3, 8}, r, 1.75), o);
+  EXPECT_NEAR(diagonal.youngs_modulus, sc_modulus(), 1e-8 * sc_modulus());
+  // Open sides: the lattice's columns do not couple laterally; no lateral strain.
+  o.sides = "open";
+  const UniaxialCompressionResult open =
+      run_uniaxial_compression(test::bonded_lattice(generate::LatticeType::sc, {3, 3, 8}, r, 1.01), o);
+  EXPECT_NEAR(open.poisson_ratio, 0.0, 1e-8);
+}
+
+// Clapeyron: the work of the plate, F delta / 2, equals the strain energy of the links; and
+// Poisson's ratio of an open disordered pillar is positive and below 1/2.
+TEST(StaticSolver, PlateWorkEqualsTheStrainEnergyOfTheLinks) {
+  const Packing p = random_bonded_sample(300, 3);
+  UniaxialCompressionOptions o = compression_options("static");
+  o.max_strain = 0.01;
+  o.sides = "open";
+  const UniaxialCompressionResult res = run_uniaxial_compression(p, o);
+  const UniaxialCompressionPoint& last = res.curve.back();
+  ASSERT_GT(last.strain_energy, 0.0);
+  EXPECT_NEAR(0.5 * last.force * last.displacement, last.strain_energy, 1e-7 * last.strain_energy);
+  EXPECT_GT(res.poisson_ratio, 0.0);
+  EXPECT_LT(res.poisson_ratio, 0.5);
+}
+
+// A uniform column whose bonds all carry the same axial stress E_b eps: with the normal
+// criterion on compressed bonds (eq. 16 as written), all the gauge's axial bonds reach
+// sigma_max together at eps = sigma_max / E_b, where the stress is (pi / 4) sigma_max. Those
+// that tie to round-off break at once (at least one per column, 9 columns, at most the 45 of
+// the 5 gaps); once every column is cut it carries nothing and the analysis stops.
+TEST(StaticSolver, SequentialLinearAnalysisOfAUniformColumnBreaksItAtTheClosedFormStrength) {
+  const double strength = 50e6;
+  UniaxialCompressionOptions o = compression_options("static", strength);
+  for (auto& b : o.bond_materials) b.compressive_breakage = true;
+  o.max_strain = 0.05;
+  const UniaxialCompressionResult res =
+      run_uniaxial_compression(test::bonded_lattice(generate::LatticeType::sc, {3, 3, 8}, r, 1.01), o);
+  EXPECT_NEAR(res.strain_at_peak, strength / E, 1e-8 * strength / E);
+  EXPECT_NEAR(res.strength, std::numbers::pi / 4 * strength, 1e-8 * strength);
+  EXPECT_GE(res.broken_bonds, 9u);
+  EXPECT_LE(res.broken_bonds, 45u);
+  EXPECT_LT(res.curve.back().stress, 1e-6 * res.strength);
+  ASSERT_EQ(res.break_strain.size(), res.broken_bonds);
+  for (double s : res.break_strain) EXPECT_NEAR(s, strength / E, 1e-8 * strength / E);
+  EXPECT_NE(res.stop_reason, "reached max_strain");
+  // Without the normal criterion on compressed bonds (MUSEN's default), the column never fails.
+  o.bond_materials = compression_options("static", strength).bond_materials;
+  const UniaxialCompressionResult tough =
+      run_uniaxial_compression(test::bonded_lattice(generate::LatticeType::sc, {3, 3, 8}, r, 1.01), o);
+  EXPECT_EQ(tough.broken_bonds, 0u);
+}
+
+// The static and the dynamic test on the same disordered models: G' of a diluted FCC network of
+// contact bonds within 2 %, and E of the random bonded sample within 2 %, strength within 10 %
+// (the dynamic one at the automatic quasi-static rate, rate-independent to 5 %:
+// tests/mechanics/test_uniaxial_compression.cpp).
+// The network has a gap of 1e-3 d between neighbours and is sheared to 1e-4, so that no unbonded
+// neighbour pair closes: with the lattice touching (gap 0) the dynamic test's unbonded
+// neighbours push whenever they are compressed and its G' is 37 % above the static one, whose
+// contacts are only those touching at the start.
+TEST(StaticSolver, AgreesWithTheDynamicShearTestOnADisorderedNetwork) {
+  generate::LatticeParams lp;
+  lp.type = generate::LatticeType::fcc;
+  lp.cells = {3, 3, 3};
+  lp.radius = r0;
+  lp.gap = 1e-3 * 2 * r0;
+  Packing p = generate::make_lattice(lp);
+  generate::BondingOptions bo;
+  bo.cutoff_ratio = 1.01;
+  generate::add_bonds(p, bo);
+  Bonds kept;
+  Random rng(7);
+  for (std::size_t b = 0; b < p.bonds.size(); ++b)
+    if (rng.uniform() < 0.7) kept.add(p.bonds.i[b], p.bonds.j[b], p.bonds.image[b], 0, p.bonds.rest_length[b]);
+  p.bonds = kept;
+  OscillatoryShearOptions o = shear_options("dynamic", "z:x,x:y");
+  o.amplitude = 1e-4;
+  const OscillatoryShearResult dynamic = run_oscillatory_shear(p, o);
+  o.solver = "static";
+  const OscillatoryShearResult quasi_static = run_oscillatory_shear(p, o);
+  ASSERT_EQ(dynamic.runs.size(), 2u);
+  for (std::size_t k = 0; k < 2; ++k)
+    EXPECT_NEAR(quasi_static.runs[k].storage_modulus, dynamic.runs[k].storage_modulus,
+                0.02 * dynamic.runs[k].storage_modulus)
+        << orientation_name(dynamic.runs[k].orientation);
+}
+
+TEST(StaticSolver, AgreesWithTheDynamicCompressionTestOnARandomBondedSample) {
+  const Packing p = random_bonded_sample(300, 3);
+  UniaxialCompressionSetup setup;
+  setup.options.threads = 1;
+  setup.options.max_strain = 0.05;
+  setup.options.samples = 300;
+  setup.finish(p);
+  const UniaxialCompressionResult dynamic = run_uniaxial_compression(p, setup.options);
+  setup.options.solver = "static";
+  const UniaxialCompressionResult quasi_static = run_uniaxial_compression(p, setup.options);
+  ASSERT_GT(dynamic.broken_bonds, 0u);
+  ASSERT_GT(quasi_static.broken_bonds, 0u);
+  EXPECT_NEAR(quasi_static.youngs_modulus, dynamic.youngs_modulus, 0.02 * dynamic.youngs_modulus);
+  EXPECT_NEAR(quasi_static.strength, dynamic.strength, 0.10 * dynamic.strength);
+}
+
+TEST(StaticSolver, BackendsAgree) {
+  const std::vector<std::string> backends = static_solver_backends();
+  if (backends.size() < 2) GTEST_SKIP() << "built without CHOLMOD";
+  const Packing p = diluted_fcc(0.7);
+  StaticSolverOptions a, b;
+  a.backend = "cholmod";
+  b.backend = "eigen";
+  const PeriodicStiffness ca = periodic_stiffness(p, contact_bond_config(100.0, 10.0), a);
+  const PeriodicStiffness cb = periodic_stiffness(p, contact_bond_config(100.0, 10.0), b);
+  for (int i = 0; i < 6; ++i)
+    for (int j = 0; j < 6; ++j) EXPECT_NEAR(ca.stiffness[i][j], cb.stiffness[i][j], 1e-9 * ca.stiffness[0][0]);
+  EXPECT_GT(ca.shear_modulus, 0.0);
+}
+
+// After links are switched off the solver iterates with the old factor as preconditioner; the
+// answer is the one a fresh factorization of the reduced network gives.
+TEST(StaticSolver, PreconditionedResolveAfterRemovingLinksEqualsAFreshFactorization) {
+  const Packing p = random_bonded_sample(300, 5);
+  UniaxialCompressionOptions o = compression_options("static");
+  UniaxialCompressionResult info;
+  const UniaxialCompressionSpecimen s = prepare_uniaxial_compression(p, o, info);
+  dem::EngineConfig config;
+  config.contact_law = "hertz_mindlin";
+  config.types = o.types;
+  config.bond_materials = o.bond_materials;
+  const StaticLinks links = linearize_links(s.model, config);
+  ASSERT_GT(links.bonds(), 100u);
+  std::vector<double> q0(6 * s.model.size(), 0.0);
+  for (std::size_t k = 0; k < s.model.size(); ++k)
+    if (s.grip[k]) q0[6 * k + 2] = -1e-3 * info.height;
+  StaticSolver reused(links, s.model.fixed, {});
+  std::vector<double> q = q0;
+  reused.solve(q, {});
+  for (std::size_t k = 0; k < links.size(); k += 17) reused.deactivate(k);
+  q = q0;
+  reused.solve(q, {});
+  EXPECT_EQ(reused.stats().factorizations, 1);
+  EXPECT_GT(reused.stats().pcg_iterations, 0);
+  StaticSolver fresh(links, s.model.fixed, {});
+  for (std::size_t k = 0; k < links.size(); k += 17) fresh.deactivate(k);
+  std::vector<double> q_fresh = q0;
+  fresh.solve(q_fresh, {});
+  double scale = 0.0, diff = 0.0;
+  for (std::size_t k = 0; k < q.size(); k += 6) {
+    scale = std::max(scale, std::abs(q_fresh[k + 2]));
+    diff = std::max(diff, std::abs(q[k + 2] - q_fresh[k + 2]));
+  }
+  EXPECT_LT(diff, 1e-8 * scale);
+}
+
+TEST(StaticSolver, BadInputIsAnInputError) {
+  const Packing column = test::bonded_lattice(generate::LatticeType::sc, {3, 3, 4}, r, 1.01);
+  UniaxialCompressionOptions o = compression_options("static");
+  o.plate = "contact";
+  EXPECT_THROW(run_uniaxial_compression(column, o), InputError);
+  o = compression_options("quasi");
+  EXPECT_THROW(run_uniaxial_compression(column, o), InputError);
+  o = compression_options("static");
+  o.solver_backend = "petsc";
+  EXPECT_THROW(run_uniaxial_compression(column, o), InputError);
+  const Packing sc = test::bonded_lattice(generate::LatticeType::sc, {3, 3, 3}, r0, 1.01);
+  EXPECT_THROW(run_oscillatory_shear(sc, shear_options("implicit")), InputError);
+  // A contact law without a linearization, with touching unbonded pairs.
+  dem::EngineConfig c = contact_bond_config(100.0, 10.0);
+  c.contact_law = "linear_adhesive";
+  Packing unbonded = sc;
+  unbonded.bonds = Bonds{};
+  EXPECT_THROW(periodic_stiffness(unbonded, c), InputError);
+  Packing open = sc;
+  open.box.periodic = {true, true, false};
+  EXPECT_THROW(periodic_stiffness(open, contact_bond_config(100.0, 10.0)), InputError);
+}
