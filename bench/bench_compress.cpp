@@ -11,7 +11,8 @@
 //   docs/opal.md (pores 138 nm at 150 nm spacing, [111] along z, porosity 0.75, two substrate
 //   layers, bonds within 1.75 d): about 54,000 particles. STEPS (default 2000) are timed after
 //   200 warm-up steps.
-// last line: packlab compress N=... bonds=... threads=... pts_per_s=... bond_steps_per_s=... bytes_per_particle=... bytes_per_bond=...
+// last line: packlab compress N=... bonds=... threads=... pts_per_s=... bond_steps_per_s=... bytes_per_particle=...
+// bytes_per_bond=...
 #include <fmt/format.h>
 #include <malloc.h>
 
@@ -19,74 +20,19 @@
 #include <cstdlib>
 #include <string>
 
-#include "packlab/core/random.hpp"
-#include "packlab/generate/fba.hpp"
-#include "packlab/generate/opal.hpp"
-#include "packlab/io/packing_io.hpp"
+#include "opal_case.hpp"
 #include "packlab/mechanics/opal_materials.hpp"
 #include "packlab/mechanics/uniaxial_compression.hpp"
 
 using namespace packlab;
-
-namespace {
-
-double since(std::chrono::steady_clock::time_point t0) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-}
-
-std::size_t heap_in_use() { return mallinfo2().uordblks; }
-
-Packing tile(const Packing& p, int n) {
-  Packing out;
-  out.box = p.box;
-  out.box.length = {p.box.length.x * n, p.box.length.y * n, p.box.length.z};
-  for (int i = 0; i < n; ++i)
-    for (int j = 0; j < n; ++j)
-      for (std::size_t q = 0; q < p.size(); ++q)
-        out.add(p.position[q] + Vec3{i * p.box.length.x, j * p.box.length.y, 0.0}, p.radius[q], p.type[q]);
-  return out;
-}
-
-Packing make_opal(const Packing& particles, int threads) {
-  generate::OpalOptions oo;
-  oo.fcc.diameter = 138e-9;
-  oo.fcc.spacing_ratio = 1.087;
-  oo.threads = threads;
-  generate::OpalSummary summary;
-  Packing model = generate::build_opal(particles, oo, &summary);
-  fmt::print("opal: {} particles ({} substrate), {} bonds, porosity {:.3f}\n", summary.particles, summary.substrate,
-             summary.bonds, summary.porosity);
-  return model;
-}
-
-Packing default_packing(int threads) {
-  const double d = 15e-9;
-  Box box;
-  box.lo = {0, 0, 0};
-  box.length = {300e-9, 259.81e-9, 412.95e-9};
-  box.periodic = {true, true, false};
-  generate::FbaParams fp;
-  fp.target_porosity = 0.38;
-  fp.threads = threads;
-  generate::SizeClasses classes;
-  const long count = generate::fba_count_for_volume(box.volume(), fp.target_porosity, d, classes);
-  Random rng(2);
-  const auto t0 = std::chrono::steady_clock::now();
-  const std::vector<double> radii = generate::fba_class_radii(count, classes, rng);
-  generate::FbaResult packed = generate::fba_pack(box, radii, fp, rng);
-  fmt::print("FBA packing of {} particles: {} iterations, {:.1f} s\n", count, packed.status.iteration, since(t0));
-  return packed.packing;
-}
-
-}  // namespace
+using namespace packlab::bench;
 
 int main(int argc, char** argv) {
   const int threads = argc > 1 ? std::atoi(argv[1]) : 1;
   const std::string file = argc > 2 ? argv[2] : "-";
   const int tiles = argc > 3 ? std::atoi(argv[3]) : 4;
   const long steps = argc > 4 ? std::atol(argv[4]) : 2000;
-  const Packing input = file == "-" ? default_packing(threads) : io::read_packing(file);
-  const Packing model = input.bonds.empty() ? make_opal(tile(input, tiles), threads) : input;
+  const Packing model = opal_case(file, tiles, threads);
 
   mechanics::UniaxialCompressionSetup setup;
   setup.options.threads = threads;
@@ -131,8 +77,9 @@ int main(int argc, char** argv) {
              model.bonds.size(), threads, steps, seconds, engine.time_step());
   fmt::print("memory: {:.0f} bytes per particle (engine without bonds: {:.1f} MB), {:.0f} bytes per bond\n",
              per_particle, static_cast<double>(bytes_bare) * 1e-6, per_bond);
-  fmt::print("packlab compress N={} bonds={} threads={} pts_per_s={:.4g} bond_steps_per_s={:.4g} bytes_per_particle={:.0f} "
-             "bytes_per_bond={:.0f}\n",
-             model.size(), model.bonds.size(), threads, pts, bts, per_particle, per_bond);
+  fmt::print(
+      "packlab compress N={} bonds={} threads={} pts_per_s={:.4g} bond_steps_per_s={:.4g} bytes_per_particle={:.0f} "
+      "bytes_per_bond={:.0f}\n",
+      model.size(), model.bonds.size(), threads, pts, bts, per_particle, per_bond);
   return 0;
 }

@@ -58,3 +58,7 @@ run bench_shear "$ROOT/examples/shear/data/vem_ns8000_nv2000.xyz" 1 $([ "$quick"
 # ~54,000-particle FCC opal: particle-steps/s, bond-steps/s, bytes per particle and per bond.
 run bench_fba 10
 if [ "$quick" = 1 ]; then run bench_compress 1 - 1 500; else run bench_compress 1; fi
+# The quasi-static solver (docs/static-solver.md): E of the same ~54,000-particle opal from one
+# solve, and G' in six orientations of the N = 8000 shear structure.
+run bench_static compress 1 - cholmod -1
+run bench_static shear 1 "$ROOT/examples/shear/data/vem_ns8000_nv2000.xyz"

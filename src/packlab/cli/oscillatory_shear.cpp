@@ -107,6 +107,10 @@ void add_test_shear(CLI::App& test) {
               "particle-steps/s); wrote {}\n",
               result.storage_modulus_mean, result.storage_modulus_std, result.runs.size(), result.phase_angle_mean,
               result.seconds, result.seconds > 0 ? result.particle_steps / result.seconds : 0.0, dir.string());
+          if (c.settings.test.solver == "static")
+            fmt::print(
+                "static solver: one linear solve per orientation (no inertia or damping: phase angle 0 by "
+                "construction)\n");
         }
       });
 }

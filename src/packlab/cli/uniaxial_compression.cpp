@@ -10,6 +10,7 @@
 
 #include <fmt/format.h>
 
+#include <cmath>
 #include <filesystem>
 #include <functional>
 #include <memory>
@@ -62,15 +63,27 @@ void add_test_compress(CLI::App& test) {
         if (!c.quiet) {
           fmt::print("{} particles ({} fixed), {} bonds ({} left out), H0 = {:.4g} m, A = {:.4g} m^2\n", r.particles,
                      r.fixed_particles, r.bonds, r.dropped_bonds, r.height, r.area);
-          fmt::print("strain rate {:.4g} 1/s, time step {:.4g} s, {} steps; {}\n", s.options.strain_rate, r.time_step,
-                     r.steps, r.stop_reason);
-          fmt::print(
-              "Young's modulus {:.5g} GPa (fit over strain {:.4g}..{:.4g}), strength {:.5g} MPa at strain {:.4g}, "
-              "{} broken bonds\n",
-              r.youngs_modulus * 1e-9, r.modulus.strain_begin, r.modulus.strain_end, r.strength * 1e-6,
-              r.strain_at_peak, r.broken_bonds);
-          fmt::print("max kinetic / strain energy before the peak {:.3g}; wrote {} in {:.1f} s\n", r.max_kinetic_ratio,
-                     (dir / "report.json").string(), r.seconds);
+          if (r.solver == "static") {
+            fmt::print("static solver ({}): {} solves, {} factorizations, {:.1f} MB; {}\n", s.options.solver_backend,
+                       r.solves, r.factorizations, static_cast<double>(r.solver_bytes) * 1e-6, r.stop_reason);
+            fmt::print(
+                "Young's modulus {:.5g} GPa (linear solve), Poisson's ratio {}, strength {:.5g} MPa at strain "
+                "{:.4g} (sequential linear analysis), {} broken bonds\n",
+                r.youngs_modulus * 1e-9,
+                std::isfinite(r.poisson_ratio) ? fmt::format("{:.4g}", r.poisson_ratio) : "- (periodic sides)",
+                r.strength * 1e-6, r.strain_at_peak, r.broken_bonds);
+            fmt::print("wrote {} in {:.1f} s\n", (dir / "report.json").string(), r.seconds);
+          } else {
+            fmt::print("strain rate {:.4g} 1/s, time step {:.4g} s, {} steps; {}\n", s.options.strain_rate, r.time_step,
+                       r.steps, r.stop_reason);
+            fmt::print(
+                "Young's modulus {:.5g} GPa (fit over strain {:.4g}..{:.4g}), strength {:.5g} MPa at strain {:.4g}, "
+                "{} broken bonds\n",
+                r.youngs_modulus * 1e-9, r.modulus.strain_begin, r.modulus.strain_end, r.strength * 1e-6,
+                r.strain_at_peak, r.broken_bonds);
+            fmt::print("max kinetic / strain energy before the peak {:.3g}; wrote {} in {:.1f} s\n",
+                       r.max_kinetic_ratio, (dir / "report.json").string(), r.seconds);
+          }
         }
       });
   cmd->add_flag("--no-vtu", *no_vtu, "Do not write the final model (model.vtu)");

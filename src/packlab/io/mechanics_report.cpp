@@ -58,8 +58,9 @@ nlohmann::json oscillatory_shear_summary(const mechanics::OscillatoryShearResult
   const bool quasi_static = !result.runs.empty() && result.runs.front().solver == "static";
   j["solver"] = quasi_static ? "static" : "dynamic";
   if (quasi_static)
-    j["solver_note"] = "static: one linear solve per orientation; no inertia or damping, so the phase angle is 0 by "
-                       "construction";
+    j["solver_note"] =
+        "static: one linear solve per orientation; no inertia or damping, so the phase angle is 0 by "
+        "construction";
   if (result.relaxed)
     j["relaxation"] = {{"steps", result.relax.steps},
                        {"converged", result.relax.converged},
@@ -106,12 +107,13 @@ nlohmann::json uniaxial_compression_summary(const mechanics::UniaxialCompression
   j["dropped_bonds"] = r.dropped_bonds;
   j["stop_reason"] = r.stop_reason;
   if (r.solver == "static") {
-    j["static_solver"] = {{"backend", o.solver_backend},
-                          {"poisson_ratio", std::isfinite(r.poisson_ratio) ? nlohmann::json(r.poisson_ratio) : nlohmann::json()},
-                          {"solves", r.solves},
-                          {"factorizations", r.factorizations},
-                          {"matrix_and_factor_bytes", r.solver_bytes},
-                          {"strength_method", "sequential linear analysis (envelope of the bond breaks)"}};
+    j["static_solver"] = {
+        {"backend", o.solver_backend},
+        {"poisson_ratio", std::isfinite(r.poisson_ratio) ? nlohmann::json(r.poisson_ratio) : nlohmann::json()},
+        {"solves", r.solves},
+        {"factorizations", r.factorizations},
+        {"matrix_and_factor_bytes", r.solver_bytes},
+        {"strength_method", "sequential linear analysis (envelope of the bond breaks)"}};
   }
   j["seconds"] = r.seconds;
   j["particle_steps_per_second"] =

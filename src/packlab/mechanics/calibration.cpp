@@ -28,8 +28,8 @@ CalibrationResult calibrate(const ResponseFunction& response, const std::vector<
     require(std::isfinite(targets[a]) && targets[a] > 0.0, fmt::format("target[{}]", a), targets[a], "positive");
   }
   require(options.tolerance > 0.0 && options.tolerance < 1.0, "tolerance", options.tolerance, "in (0, 1)");
-  require(options.max_iterations >= 1 && options.max_iterations <= 1000, "max_iterations",
-          options.max_iterations, "in [1, 1000]");
+  require(options.max_iterations >= 1 && options.max_iterations <= 1000, "max_iterations", options.max_iterations,
+          "in [1, 1000]");
   require(options.relative_step > 0.0 && options.relative_step < 1.0, "relative_step", options.relative_step,
           "in (0, 1)");
   require(options.lower.empty() || options.lower.size() == n, "lower bounds", static_cast<double>(options.lower.size()),
@@ -71,8 +71,9 @@ CalibrationResult calibrate(const ResponseFunction& response, const std::vector<
     // calibrated: say so instead of dividing by zero.
     Eigen::FullPivLU<Eigen::MatrixXd> lu(jacobian);
     if (!lu.isInvertible())
-      fail_input("calibration: the responses do not change with the parameters (singular finite-difference "
-                 "Jacobian); check the parameter ranges");
+      fail_input(
+          "calibration: the responses do not change with the parameters (singular finite-difference "
+          "Jacobian); check the parameter ranges");
     const Eigen::VectorXd delta = lu.solve(residual);
     for (std::size_t a = 0; a < n; ++a) {
       double next = p[a] + delta(static_cast<Eigen::Index>(a));

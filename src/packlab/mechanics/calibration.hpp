@@ -17,10 +17,10 @@
 namespace packlab::mechanics {
 
 struct CalibrationOptions {
-  double tolerance = 0.005;        // relative, per response (0.5 %)
+  double tolerance = 0.005;  // relative, per response (0.5 %)
   int max_iterations = 20;
-  double relative_step = 0.05;     // finite-difference step dp_b / p_b
-  bool diagonal = false;           // response a depends on parameter a only (the paper's scheme)
+  double relative_step = 0.05;  // finite-difference step dp_b / p_b
+  bool diagonal = false;        // response a depends on parameter a only (the paper's scheme)
   // Parameters stay in [lower, upper] (the Newton step is clipped; empty = positive only).
   std::vector<double> lower, upper;
 };
@@ -32,8 +32,8 @@ struct CalibrationStep {
 };
 
 struct CalibrationResult {
-  std::vector<double> parameters;  // the last iterate
-  std::vector<double> responses;   // R at the last iterate
+  std::vector<double> parameters;        // the last iterate
+  std::vector<double> responses;         // R at the last iterate
   std::vector<CalibrationStep> history;  // every evaluation in order
   int iterations = 0;
   int evaluations = 0;

@@ -27,9 +27,8 @@ CompressionCalibrationResult calibrate_compression(const Packing& model, const U
     return out;
   };
   CompressionCalibrationResult result;
-  result.calibration =
-      calibrate(response, {setup.materials.silica_youngs_modulus, setup.materials.silica_strength},
-                {target_youngs_modulus, target_strength}, options);
+  result.calibration = calibrate(response, {setup.materials.silica_youngs_modulus, setup.materials.silica_strength},
+                                 {target_youngs_modulus, target_strength}, options);
   for (auto it = runs.rbegin(); it != runs.rend(); ++it)
     if (it->first == result.calibration.parameters) {
       result.final = std::move(it->second);

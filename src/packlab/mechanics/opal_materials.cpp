@@ -28,9 +28,9 @@ std::vector<dem::Material> opal_particle_types(const OpalMaterials& m) {
 
 std::vector<dem::ElasticBond::Params> opal_bond_materials(const OpalMaterials& m) {
   dem::ElasticBond::Params silica{m.silica_youngs_modulus, m.silica_poisson_ratio, m.silica_strength,
-                                  m.silica_strength, m.bond_radius_ratio, m.relaxation_time};
+                                  m.silica_strength,       m.bond_radius_ratio,    m.relaxation_time};
   dem::ElasticBond::Params titania{m.titania_youngs_modulus, m.titania_poisson_ratio, m.titania_strength,
-                                   m.titania_strength, m.bond_radius_ratio, m.relaxation_time};
+                                   m.titania_strength,       m.bond_radius_ratio,     m.relaxation_time};
   silica.compressive_breakage = titania.compressive_breakage = m.compressive_breakage;
   return {silica, titania, silica};
 }

@@ -30,12 +30,15 @@ namespace {
 void require_periodic_bonded(const Packing& p) {
   p.validate();
   if (!(p.box.periodic[0] && p.box.periodic[1] && p.box.periodic[2]))
-    fail_input("test shear: the packing's box must be periodic along x, y and z (the plates are its periodic "
-               "images)");
+    fail_input(
+        "test shear: the packing's box must be periodic along x, y and z (the plates are its periodic "
+        "images)");
   bool intact = false;
   for (int s : p.bonds.state) intact = intact || s == 0;
-  if (!intact) fail_input("test shear: the packing has no intact bond; make a bonded model first (packlab bond IN "
-                          "--model contact --out FILE.vtu)");
+  if (!intact)
+    fail_input(
+        "test shear: the packing has no intact bond; make a bonded model first (packlab bond IN "
+        "--model contact --out FILE.vtu)");
 }
 
 }  // namespace
@@ -158,7 +161,8 @@ OscillatoryShearResult run_oscillatory_shear(const Packing& bonded, const Oscill
   for (const auto& o : shear_orientations(options.orientations)) {
     result.runs.push_back(run_shear_orientation(result.relaxed_packing, o, options));
     const ShearRun& r = result.runs.back();
-    result.particle_steps += static_cast<double>(r.structure_particles + r.plate_particles) * static_cast<double>(r.steps);
+    result.particle_steps +=
+        static_cast<double>(r.structure_particles + r.plate_particles) * static_cast<double>(r.steps);
   }
   double sum = 0.0;
   for (const auto& r : result.runs) {
@@ -170,7 +174,8 @@ OscillatoryShearResult run_oscillatory_shear(const Packing& bonded, const Oscill
   result.storage_modulus_mean = sum / n;
   result.phase_angle_mean /= n;
   double var = 0.0;
-  for (const auto& r : result.runs) var += (r.storage_modulus - result.storage_modulus_mean) * (r.storage_modulus - result.storage_modulus_mean);
+  for (const auto& r : result.runs)
+    var += (r.storage_modulus - result.storage_modulus_mean) * (r.storage_modulus - result.storage_modulus_mean);
   result.storage_modulus_std = result.runs.size() > 1 ? std::sqrt(var / (n - 1.0)) : 0.0;
   result.seconds = seconds_since(t0);
   return result;

@@ -70,11 +70,11 @@ struct OscillatoryShearOptions {
   std::string stiffness_rule = "particle";
   // Loading.
   int cycles = 10;
-  double amplitude = 1e-3;          // largest plate deflection / box edge [-]
+  double amplitude = 1e-3;  // largest plate deflection / box edge [-]
   long steps_per_cycle = 20000;
-  int samples_per_cycle = 40;       // stress samples per cycle; a multiple of 4 dividing steps_per_cycle
+  int samples_per_cycle = 40;  // stress samples per cycle; a multiple of 4 dividing steps_per_cycle
   int plate_layers = 3;
-  int regions = 3;                  // measurement slabs at heights H (k+1)/(regions+1), thickness H/(regions+1)
+  int regions = 3;  // measurement slabs at heights H (k+1)/(regions+1), thickness H/(regions+1)
   double time_step_safety = 0.2;
   // §2.2 relaxation of the periodic structure (relax), and the settling of the set-up with the
   // same procedure and criterion (settle).
@@ -100,7 +100,8 @@ void validate(const OscillatoryShearOptions& options);
 dem::EngineConfig shear_engine_config(const OscillatoryShearOptions& options);
 
 // The §2.2 relaxation of a periodic bonded packing; returns it with the new positions (velocities zero).
-Packing relax_bonded(const Packing& bonded, const OscillatoryShearOptions& options, dem::ZeroVelocityRelaxResult* result = nullptr);
+Packing relax_bonded(const Packing& bonded, const OscillatoryShearOptions& options,
+                     dem::ZeroVelocityRelaxResult* result = nullptr);
 
 // The packing with coordinates, box and bond images permuted so that the plate normal is z'
 // and the shear direction x' (x' = old direction axis, y' = the third axis, z' = old normal).
@@ -113,34 +114,34 @@ struct ShearSetup {
   Packing packing;
   std::vector<int> role;
   std::vector<int> region;
-  double height = 0.0;           // H: the box edge along z' [m]
-  double area = 0.0;             // L_x' L_y' [m^2]
-  double region_thickness = 0.0; // [m]
+  double height = 0.0;            // H: the box edge along z' [m]
+  double area = 0.0;              // L_x' L_y' [m^2]
+  double region_thickness = 0.0;  // [m]
   std::size_t structure = 0, lower = 0, upper = 0;
 };
 ShearSetup build_shear_setup(const Packing& oriented, int plate_layers, int regions);
 
 struct ShearSample {
-  int cycle = 0;                  // 1-based
-  long step = 0;                  // steps since the start of the loading
-  double time = 0.0;              // [s]
-  double phase = 0.0;             // 2 pi t / T within the cycle [rad]
-  double strain = 0.0;            // gamma = plate deflection / H [-]
-  double stress = 0.0;            // mean over the measurement regions [Pa]
-  double plate_stress = 0.0;      // -F_x'(on the upper plate) / area [Pa]
+  int cycle = 0;                      // 1-based
+  long step = 0;                      // steps since the start of the loading
+  double time = 0.0;                  // [s]
+  double phase = 0.0;                 // 2 pi t / T within the cycle [rad]
+  double strain = 0.0;                // gamma = plate deflection / H [-]
+  double stress = 0.0;                // mean over the measurement regions [Pa]
+  double plate_stress = 0.0;          // -F_x'(on the upper plate) / area [Pa]
   std::vector<double> region_stress;  // [Pa]
-  double kinetic_energy = 0.0;    // [J]
-  double strain_energy = 0.0;     // [J]
+  double kinetic_energy = 0.0;        // [J]
+  double strain_energy = 0.0;         // [J]
 };
 
 struct ShearCycle {
   int cycle = 0;
-  double strain_amplitude = 0.0;   // half the peak-to-peak strain [-]
-  double stress_amplitude = 0.0;   // half the peak-to-peak stress [Pa]
-  double complex_modulus = 0.0;    // |G*| [Pa]
-  double phase_angle = 0.0;        // delta [rad]
-  double storage_modulus = 0.0;    // G' = |G*| cos(delta) [Pa]
-  double loss_modulus = 0.0;       // G'' = |G*| sin(delta) [Pa]
+  double strain_amplitude = 0.0;       // half the peak-to-peak strain [-]
+  double stress_amplitude = 0.0;       // half the peak-to-peak stress [Pa]
+  double complex_modulus = 0.0;        // |G*| [Pa]
+  double phase_angle = 0.0;            // delta [rad]
+  double storage_modulus = 0.0;        // G' = |G*| cos(delta) [Pa]
+  double loss_modulus = 0.0;           // G'' = |G*| sin(delta) [Pa]
   double plate_storage_modulus = 0.0;  // the same from the plate force [Pa]
 };
 
@@ -149,7 +150,7 @@ struct ShearCycle {
 // on the upper plate (-F_x' / area); the largest bond tension and shear force [Pa, N].
 struct ShearStress {
   std::vector<double> region_stress;
-  double stress = 0.0;        // mean over the regions
+  double stress = 0.0;  // mean over the regions
   double plate_stress = 0.0;
   double max_bond_tension = 0.0, max_bond_shear_force = 0.0;
 };
@@ -169,12 +170,12 @@ struct ShearRun {
   ShearOrientation orientation;
   std::vector<ShearSample> samples;
   std::vector<ShearCycle> cycles;
-  double storage_modulus = 0.0;   // mean G' over the cycles [Pa]
-  double complex_modulus = 0.0;   // mean |G*| [Pa]
-  double phase_angle = 0.0;       // mean delta [rad]
+  double storage_modulus = 0.0;  // mean G' over the cycles [Pa]
+  double complex_modulus = 0.0;  // mean |G*| [Pa]
+  double phase_angle = 0.0;      // mean delta [rad]
   double plate_storage_modulus = 0.0;
   std::size_t structure_particles = 0, plate_particles = 0, bonds = 0;
-  std::size_t broken_bonds = 0;   // bonds broken during the loading
+  std::size_t broken_bonds = 0;         // bonds broken during the loading
   double max_bond_tension_ratio = 0.0;  // max over samples and bonds of tension / F_nB
   double max_bond_shear_ratio = 0.0;    // max of |F_s| / F_sB
   double max_bond_shear_force = 0.0;    // [N]
@@ -200,9 +201,9 @@ struct OscillatoryShearResult {
   double phase_angle_max = 0.0;       // largest |delta| of any cycle [rad]
   dem::ZeroVelocityRelaxResult relax;
   bool relaxed = false;
-  Packing relaxed_packing;            // the structure that was tested
+  Packing relaxed_packing;  // the structure that was tested
   double seconds = 0.0;
-  double particle_steps = 0.0;        // particles x steps over every run (relaxations included)
+  double particle_steps = 0.0;  // particles x steps over every run (relaxations included)
 };
 
 // InputError when the packing is not periodic along all three axes or has no intact bond.

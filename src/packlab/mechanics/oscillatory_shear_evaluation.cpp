@@ -122,15 +122,21 @@ ShearCycle evaluate_cycle(const std::vector<ShearSample>& samples, int cycle) {
 Columns shear_sample_columns(const std::vector<ShearSample>& samples, int regions) {
   using S = ShearSample;
   Columns t;
-  add_row_column(t, "cycle", samples, [](const S& s) { return s.cycle; }, Column::Kind::integer);
-  add_row_column(t, "step", samples, [](const S& s) { return s.step; }, Column::Kind::integer);
+  add_row_column(
+      t, "cycle", samples, [](const S& s) { return s.cycle; }, Column::Kind::integer);
+  add_row_column(
+      t, "step", samples, [](const S& s) { return s.step; }, Column::Kind::integer);
   add_real_row_columns(t, samples,
-                       {{"time", &S::time}, {"phase", &S::phase}, {"strain", &S::strain}, {"stress", &S::stress},
+                       {{"time", &S::time},
+                        {"phase", &S::phase},
+                        {"strain", &S::strain},
+                        {"stress", &S::stress},
                         {"plate_stress", &S::plate_stress}},
                        10);
   std::vector<std::vector<double>> region(static_cast<std::size_t>(std::max(regions, 0)));
   for (const auto& s : samples)
-    for (std::size_t k = 0; k < region.size() && k < s.region_stress.size(); ++k) region[k].push_back(s.region_stress[k]);
+    for (std::size_t k = 0; k < region.size() && k < s.region_stress.size(); ++k)
+      region[k].push_back(s.region_stress[k]);
   for (std::size_t k = 0; k < region.size(); ++k)
     t.add("region_" + std::to_string(k), std::move(region[k]), Column::Kind::real, 10);
   add_real_row_columns(t, samples, {{"kinetic_energy", &S::kinetic_energy}, {"strain_energy", &S::strain_energy}}, 6);
@@ -140,11 +146,15 @@ Columns shear_sample_columns(const std::vector<ShearSample>& samples, int region
 Columns shear_cycle_columns(const std::vector<ShearCycle>& cycles) {
   using C = ShearCycle;
   Columns t;
-  add_row_column(t, "cycle", cycles, [](const C& c) { return c.cycle; }, Column::Kind::integer);
+  add_row_column(
+      t, "cycle", cycles, [](const C& c) { return c.cycle; }, Column::Kind::integer);
   add_real_row_columns(t, cycles,
-                       {{"strain_amplitude", &C::strain_amplitude}, {"stress_amplitude", &C::stress_amplitude},
-                        {"complex_modulus", &C::complex_modulus}, {"phase_angle", &C::phase_angle},
-                        {"storage_modulus", &C::storage_modulus}, {"loss_modulus", &C::loss_modulus},
+                       {{"strain_amplitude", &C::strain_amplitude},
+                        {"stress_amplitude", &C::stress_amplitude},
+                        {"complex_modulus", &C::complex_modulus},
+                        {"phase_angle", &C::phase_angle},
+                        {"storage_modulus", &C::storage_modulus},
+                        {"loss_modulus", &C::loss_modulus},
                         {"plate_storage_modulus", &C::plate_storage_modulus}},
                        10);
   return t;

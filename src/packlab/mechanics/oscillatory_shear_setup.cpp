@@ -21,9 +21,10 @@ int axis_from_name(const std::string& s, const std::string& spec) {
   if (s == "x") return 0;
   if (s == "y") return 1;
   if (s == "z") return 2;
-  fail_input(fmt::format("orientations = {}: '{}' is not an axis; allowed: all, or plate normals x,y,z, or "
-                         "normal:direction pairs such as z:x",
-                         spec, s));
+  fail_input(
+      fmt::format("orientations = {}: '{}' is not an axis; allowed: all, or plate normals x,y,z, or "
+                  "normal:direction pairs such as z:x",
+                  spec, s));
 }
 
 std::vector<std::string> split(const std::string& s, char sep) {
@@ -77,8 +78,8 @@ void validate(const OscillatoryShearOptions& o) {
   (void)dem::stiffness_rule_from_name(o.stiffness_rule);
   // Samples at phases 2 pi k / n with n a multiple of 4 hit the peaks and zeros of the sine.
   require(o.samples_per_cycle % 4 == 0, "samples_per_cycle", o.samples_per_cycle, "a multiple of 4, >= 8");
-  require(o.steps_per_cycle >= o.samples_per_cycle && o.steps_per_cycle % o.samples_per_cycle == 0,
-          "steps_per_cycle", static_cast<double>(o.steps_per_cycle),
+  require(o.steps_per_cycle >= o.samples_per_cycle && o.steps_per_cycle % o.samples_per_cycle == 0, "steps_per_cycle",
+          static_cast<double>(o.steps_per_cycle),
           fmt::format("a multiple of samples_per_cycle ({})", o.samples_per_cycle));
   (void)shear_orientations(o.orientations);
   if (o.solver != "dynamic" && o.solver != "static")
@@ -89,23 +90,23 @@ dem::EngineConfig shear_engine_config(const OscillatoryShearOptions& o) {
   dem::EngineConfig c;
   c.contact_law = "linear";
   c.types = {dem::Material{.normal_stiffness = o.normal_stiffness,
-                            .shear_stiffness = o.shear_stiffness,
-                            .friction = o.friction,
-                            .density = o.density,
-                            .damping = o.damping}};
+                           .shear_stiffness = o.shear_stiffness,
+                           .friction = o.friction,
+                           .density = o.density,
+                           .damping = o.damping}};
   c.stiffness_rule = dem::stiffness_rule_from_name(o.stiffness_rule);
   // The bond acts with the contact stiffness of the pair (PFC: the linear contact law extended
   // into tension), i.e. the particle stiffnesses in series under the particle rule.
   const double factor = c.stiffness_rule == dem::StiffnessRule::particle ? 0.5 : 1.0;
-  c.bond_materials = dem::BondMaterialList<dem::ContactBond>{
-      dem::ContactBond::Params{factor * o.normal_stiffness, factor * o.shear_stiffness, o.normal_strength,
-                               o.shear_strength}};
+  c.bond_materials = dem::BondMaterialList<dem::ContactBond>{dem::ContactBond::Params{
+      factor * o.normal_stiffness, factor * o.shear_stiffness, o.normal_strength, o.shear_strength}};
   c.time_step_safety = o.time_step_safety;
   c.threads = o.threads;
   return c;
 }
 
-Packing relax_bonded(const Packing& bonded, const OscillatoryShearOptions& options, dem::ZeroVelocityRelaxResult* result) {
+Packing relax_bonded(const Packing& bonded, const OscillatoryShearOptions& options,
+                     dem::ZeroVelocityRelaxResult* result) {
   dem::Engine engine(bonded, shear_engine_config(options));
   dem::ZeroVelocityRelaxOptions ro = options.relax_options;
   if (options.progress) {
@@ -128,7 +129,8 @@ Packing oriented_packing(const Packing& p, const ShearOrientation& o) {
   Packing out = p;
   out.box.lo = permute(p.box.lo);
   out.box.length = permute(p.box.length);
-  for (int a = 0; a < 3; ++a) out.box.periodic[static_cast<std::size_t>(a)] = p.box.periodic[static_cast<std::size_t>(axis[a])];
+  for (int a = 0; a < 3; ++a)
+    out.box.periodic[static_cast<std::size_t>(a)] = p.box.periodic[static_cast<std::size_t>(axis[a])];
   for (auto& x : out.position) x = permute(x);
   for (auto& v : out.velocity) v = permute(v);
   for (auto& w : out.angular_velocity) w = permute(w);
@@ -153,9 +155,10 @@ ShearSetup build_shear_setup(const Packing& in, int plate_layers, int regions) {
   }
   const double thickness = plate_layers * 2.0 * r_sum / static_cast<double>(std::max<std::size_t>(n, 1));
   if (thickness >= H)
-    fail_input(fmt::format("test shear: {} plate layers ({:.4g} m) are thicker than the box edge along the plate "
-                           "normal ({:.4g} m)",
-                           plate_layers, thickness, H));
+    fail_input(
+        fmt::format("test shear: {} plate layers ({:.4g} m) are thicker than the box edge along the plate "
+                    "normal ({:.4g} m)",
+                    plate_layers, thickness, H));
   s.height = H;
   s.area = in.box.length.x * in.box.length.y;
   s.region_thickness = H / (regions + 1);

@@ -26,7 +26,8 @@ template <typename Row>
 void add_real_row_columns(Columns& table, const std::vector<Row>& rows,
                           std::initializer_list<std::pair<const char*, double Row::*>> fields, int digits = 17) {
   for (const auto& [name, field] : fields)
-    add_row_column(table, name, rows, [field](const Row& row) { return row.*field; }, Column::Kind::real, digits);
+    add_row_column(
+        table, name, rows, [field](const Row& row) { return row.*field; }, Column::Kind::real, digits);
 }
 
 }  // namespace packlab::mechanics

@@ -7,8 +7,9 @@
 
 namespace packlab::mechanics {
 
-ShearCalibrationResult calibrate_normal_stiffness(const Packing& bonded, double target, const OscillatoryShearOptions& options,
-                                                  double tolerance, int max_iterations) {
+ShearCalibrationResult calibrate_normal_stiffness(const Packing& bonded, double target,
+                                                  const OscillatoryShearOptions& options, double tolerance,
+                                                  int max_iterations) {
   validate(options);
   require(target > 0.0 && std::isfinite(target), "target storage modulus", target, "> 0 Pa");
   OscillatoryShearOptions o = options;

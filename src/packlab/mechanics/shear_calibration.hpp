@@ -23,7 +23,8 @@ struct ShearCalibrationResult {
   std::vector<double> tried_normal_stiffness, tried_storage_modulus;
   std::string reason;
 };
-ShearCalibrationResult calibrate_normal_stiffness(const Packing& bonded, double target, const OscillatoryShearOptions& options,
-                                                  double tolerance = 0.005, int max_iterations = 10);
+ShearCalibrationResult calibrate_normal_stiffness(const Packing& bonded, double target,
+                                                  const OscillatoryShearOptions& options, double tolerance = 0.005,
+                                                  int max_iterations = 10);
 
 }  // namespace packlab::mechanics

@@ -212,6 +212,12 @@ UniaxialCompressionResult run_static_uniaxial_compression(const Packing& bonded_
   result.solves = static_cast<std::size_t>(st.solves);
   result.factorizations = static_cast<std::size_t>(st.factorizations);
   result.solver_bytes = st.matrix_bytes + st.factor_bytes;
+  result.unknowns = st.unknowns;
+  result.matrix_nonzeros = st.matrix_nonzeros;
+  result.factor_nonzeros = st.factor_nonzeros;
+  result.pcg_iterations = st.pcg_iterations;
+  result.factor_seconds = st.factor_seconds + st.assemble_seconds;
+  result.solve_seconds = st.solve_seconds;
   result.steps = st.solves;
   // The model as loaded at the last point: positions displaced, broken bonds marked.
   const double last = result.curve.back().strain;

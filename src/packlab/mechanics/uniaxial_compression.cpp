@@ -17,16 +17,23 @@ namespace packlab::mechanics {
 Columns curve_columns(const std::vector<UniaxialCompressionPoint>& curve) {
   using P = UniaxialCompressionPoint;
   Columns t;
-  add_row_column(t, "step", curve, [](const P& p) { return p.step; }, Column::Kind::integer);
+  add_row_column(
+      t, "step", curve, [](const P& p) { return p.step; }, Column::Kind::integer);
   add_real_row_columns(t, curve,
-                       {{"time", &P::time}, {"displacement", &P::displacement}, {"strain", &P::strain},
-                        {"force", &P::force}, {"stress", &P::stress}, {"kinetic_energy", &P::kinetic_energy},
+                       {{"time", &P::time},
+                        {"displacement", &P::displacement},
+                        {"strain", &P::strain},
+                        {"force", &P::force},
+                        {"stress", &P::stress},
+                        {"kinetic_energy", &P::kinetic_energy},
                         {"strain_energy", &P::strain_energy}});
-  add_row_column(t, "broken_bonds", curve, [](const P& p) { return p.broken_bonds; }, Column::Kind::integer);
+  add_row_column(
+      t, "broken_bonds", curve, [](const P& p) { return p.broken_bonds; }, Column::Kind::integer);
   return t;
 }
 
-UniaxialCompressionResult run_uniaxial_compression(const Packing& bonded_model, const UniaxialCompressionOptions& options) {
+UniaxialCompressionResult run_uniaxial_compression(const Packing& bonded_model,
+                                                   const UniaxialCompressionOptions& options) {
   if (options.solver == "static") return run_static_uniaxial_compression(bonded_model, options);
   const auto t0 = std::chrono::steady_clock::now();
   UniaxialCompressionResult result;
@@ -50,7 +57,8 @@ UniaxialCompressionResult run_uniaxial_compression(const Packing& bonded_model, 
   result.plate_speed = options.strain_rate * result.height;
   // Contact plate: a wall. Glued plate: the grip particles move with it (and a wall above them
   // keeps nothing else from passing; it touches nothing).
-  const std::size_t plate = engine.add_wall(dem::Wall{{0.0, 0.0, top}, {0.0, 0.0, -1.0}, {0.0, 0.0, -result.plate_speed}});
+  const std::size_t plate =
+      engine.add_wall(dem::Wall{{0.0, 0.0, top}, {0.0, 0.0, -1.0}, {0.0, 0.0, -result.plate_speed}});
   std::vector<std::size_t> grip_internal;
   if (glued) {
     for (std::size_t k = 0; k < n; ++k)
@@ -105,8 +113,8 @@ UniaxialCompressionResult run_uniaxial_compression(const Packing& bonded_model, 
       s.particle_stress = dem::particle_stress(engine.contact_forces(), engine.packing());
       result.snapshots.push_back(std::move(s));
     }
-    if (options.stop_drop > 0.0 && peak > 0.0 && p.strain > result.strain_at_peak && p.stress < options.stop_drop * peak &&
-        d.broken_bonds > 0) {
+    if (options.stop_drop > 0.0 && peak > 0.0 && p.strain > result.strain_at_peak &&
+        p.stress < options.stop_drop * peak && d.broken_bonds > 0) {
       result.stop_reason = fmt::format("stress fell below {:g} x peak after the peak", options.stop_drop);
       break;
     }
@@ -124,7 +132,8 @@ UniaxialCompressionResult run_uniaxial_compression(const Packing& bonded_model, 
     if (p.stress > 0.2 * peak && p.strain <= result.strain_at_peak && p.strain_energy > 0.0)
       result.max_kinetic_ratio = std::max(result.max_kinetic_ratio, p.kinetic_energy / p.strain_energy);
   result.breaks = engine.bond_breaks();
-  for (const auto& b : result.breaks) result.break_strain.push_back(result.plate_speed * (b.time - t_start) / result.height);
+  for (const auto& b : result.breaks)
+    result.break_strain.push_back(result.plate_speed * (b.time - t_start) / result.height);
   result.broken_bonds = result.breaks.size();
   result.model = engine.packing();  // fixed = substrate and glued plate layers
   result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();

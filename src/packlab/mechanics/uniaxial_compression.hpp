@@ -57,14 +57,14 @@ namespace packlab::mechanics {
 
 struct UniaxialCompressionPoint {
   long step = 0;
-  double time = 0.0;            // [s]
-  double displacement = 0.0;    // plate [m]
-  double strain = 0.0;          // displacement / H0 [-]
-  double force = 0.0;           // plate reaction, compressive positive [N]
-  double stress = 0.0;          // force / A [Pa]
-  double kinetic_energy = 0.0;  // [J]
-  double strain_energy = 0.0;   // [J]
-  std::size_t broken_bonds = 0; // since the start of the test
+  double time = 0.0;             // [s]
+  double displacement = 0.0;     // plate [m]
+  double strain = 0.0;           // displacement / H0 [-]
+  double force = 0.0;            // plate reaction, compressive positive [N]
+  double stress = 0.0;           // force / A [Pa]
+  double kinetic_energy = 0.0;   // [J]
+  double strain_energy = 0.0;    // [J]
+  std::size_t broken_bonds = 0;  // since the start of the test
 };
 
 // State at a requested strain: bond strains (input bond order of the model as run; NaN for
@@ -78,10 +78,10 @@ struct UniaxialCompressionSnapshot {
 };
 
 struct UniaxialCompressionOptions {
-  std::vector<dem::Material> types;                   // per particle type (one entry: all)
-  std::vector<dem::ElasticBond::Params> bond_materials; // per bond material (one entry: all)
-  double strain_rate = 1e7;       // [1/s]
-  double max_strain = 0.05;       // [-]
+  std::vector<dem::Material> types;                      // per particle type (one entry: all)
+  std::vector<dem::ElasticBond::Params> bond_materials;  // per bond material (one entry: all)
+  double strain_rate = 1e7;                              // [1/s]
+  double max_strain = 0.05;                              // [-]
   // Stop once past the peak when the stress has fallen below stop_drop x peak (0: run to
   // max_strain).
   double stop_drop = 0.6;
@@ -91,9 +91,9 @@ struct UniaxialCompressionOptions {
   double plate_layers = 2.0;       // glued plate: top layers moving with it (mean diameters)
   double time_step = 0.0;          // 0 = automatic (safety x min sqrt(m/k) over bonds and contacts)
   double time_step_safety = 0.2;
-  long samples = 400;              // curve points over max_strain (about)
+  long samples = 400;                    // curve points over max_strain (about)
   std::vector<double> snapshot_strains;  // strains for bond strain / particle stress snapshots
-  double modulus_lower = 0.05;     // see the header comment
+  double modulus_lower = 0.05;           // see the header comment
   double modulus_window = 0.25;
   int threads = 1;
   // "dynamic": the explicit DEM run above; "static": the quasi-static solver with sequential
@@ -112,26 +112,29 @@ struct UniaxialCompressionResult {
   double youngs_modulus = 0.0;  // [Pa]
   double strength = 0.0;        // peak stress [Pa]
   double strain_at_peak = 0.0;
-  double height = 0.0;          // H0 [m]
-  double area = 0.0;            // A [m^2]
-  double plate_speed = 0.0;     // [m/s]
-  double time_step = 0.0;       // [s]
+  double height = 0.0;       // H0 [m]
+  double area = 0.0;         // A [m^2]
+  double plate_speed = 0.0;  // [m/s]
+  double time_step = 0.0;    // [s]
   long steps = 0;
   double max_kinetic_ratio = 0.0;  // max kinetic / strain energy over points with stress > 0.2 peak
   std::size_t particles = 0, fixed_particles = 0, glued_particles = 0;
-  std::size_t bonds = 0;            // bonds in the run (intact at the start)
-  std::size_t dropped_bonds = 0;    // left out: across opened boundaries, or between two fixed particles
+  std::size_t bonds = 0;          // bonds in the run (intact at the start)
+  std::size_t dropped_bonds = 0;  // left out: across opened boundaries, or between two fixed particles
   std::size_t broken_bonds = 0;
   std::string stop_reason;
   std::vector<UniaxialCompressionSnapshot> snapshots;
-  std::vector<dem::BondBreak> breaks;  // bond index = index into `model.bonds`
-  std::vector<double> break_strain;    // the strain at each break [-]
-  std::string solver = "dynamic";      // which solver ran the test
-  double poisson_ratio = std::numeric_limits<double>::quiet_NaN();  // static, open sides: -eps_lateral / eps_axial
-  std::size_t solves = 0;              // static: linear solves
-  std::size_t factorizations = 0;      // static: matrix factorizations
-  std::size_t solver_bytes = 0;        // static: matrix and factor memory [B]
-  Packing model;                       // the model as run (final positions, bond states)
+  std::vector<dem::BondBreak> breaks;                                  // bond index = index into `model.bonds`
+  std::vector<double> break_strain;                                    // the strain at each break [-]
+  std::string solver = "dynamic";                                      // which solver ran the test
+  double poisson_ratio = std::numeric_limits<double>::quiet_NaN();     // static, open sides: -eps_lateral / eps_axial
+  std::size_t solves = 0;                                              // static: linear solves
+  std::size_t factorizations = 0;                                      // static: matrix factorizations
+  std::size_t solver_bytes = 0;                                        // static: matrix and factor memory [B]
+  std::size_t unknowns = 0, matrix_nonzeros = 0, factor_nonzeros = 0;  // static
+  long pcg_iterations = 0;                                             // static
+  double factor_seconds = 0.0, solve_seconds = 0.0;                    // static [s]
+  Packing model;  // the model as run (final positions, bond states)
   double seconds = 0.0;
 };
 
@@ -151,7 +154,7 @@ UniaxialCompressionSpecimen prepare_uniaxial_compression(const Packing& bonded_m
 Columns curve_columns(const std::vector<UniaxialCompressionPoint>& curve);
 
 // InputError on a model without bonds, periodic z that cannot be opened, bad options.
-UniaxialCompressionResult run_uniaxial_compression(const Packing& bonded_model, const UniaxialCompressionOptions& options);
+UniaxialCompressionResult run_uniaxial_compression(const Packing& bonded_model,
+                                                   const UniaxialCompressionOptions& options);
 
 }  // namespace packlab::mechanics
-

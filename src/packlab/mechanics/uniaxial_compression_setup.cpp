@@ -35,7 +35,8 @@ double width(const Packing& model, int axis) {
 
 // A: the periodic cross-section Lx Ly, or the x-y extent of the spheres along open sides.
 double cross_section_area(const Packing& model, const std::string& sides) {
-  if (sides == "periodic" && model.box.periodic[0] && model.box.periodic[1]) return model.box.length.x * model.box.length.y;
+  if (sides == "periodic" && model.box.periodic[0] && model.box.periodic[1])
+    return model.box.length.x * model.box.length.y;
   return width(model, 0) * width(model, 1);
 }
 
@@ -49,14 +50,17 @@ void UniaxialCompressionOptions::validate() const {
   ranges.validate();
   // Set by UniaxialCompressionSetup::finish (or the caller), not an option of the front ends.
   require(strain_rate > 0.0 && std::isfinite(strain_rate), "strain_rate", strain_rate, "> 0 1/s");
-  if (sides != "periodic" && sides != "open") fail_input(fmt::format("sides = {}: must be 'periodic' or 'open'", sides));
-  if (plate != "glued" && plate != "contact") fail_input(fmt::format("plate = {}: must be 'glued' or 'contact'", plate));
+  if (sides != "periodic" && sides != "open")
+    fail_input(fmt::format("sides = {}: must be 'periodic' or 'open'", sides));
+  if (plate != "glued" && plate != "contact")
+    fail_input(fmt::format("plate = {}: must be 'glued' or 'contact'", plate));
   if (solver != "dynamic" && solver != "static")
     fail_input(fmt::format("solver = {}: must be 'dynamic' or 'static'", solver));
   if (solver == "static" && plate != "glued")
-    fail_input("plate = contact with solver = static: the static solver needs the glued plate (a contact plate "
-               "touches a rough top at a few points and takes no load until it has pressed in, which a linear "
-               "solve about the start cannot follow)");
+    fail_input(
+        "plate = contact with solver = static: the static solver needs the glued plate (a contact plate "
+        "touches a rough top at a few points and takes no load until it has pressed in, which a linear "
+        "solve about the start cannot follow)");
   for (double s : snapshot_strains)
     require(s > 0.0 && s <= max_strain, "snapshot_strains", s, fmt::format("in (0, max_strain = {:g}]", max_strain));
   if (types.empty()) fail_input("compression test: no particle type parameters given");
@@ -92,7 +96,8 @@ UniaxialCompressionSpecimen prepare_uniaxial_compression(const Packing& bonded_m
   }
   if (!any_fixed) {
     if (!(options.substrate_layers > 0.0))
-      fail_input("substrate_layers = 0: the model has no fixed particles, so at least one substrate layer must be fixed");
+      fail_input(
+          "substrate_layers = 0: the model has no fixed particles, so at least one substrate layer must be fixed");
     const double cut = zmin + (options.substrate_layers - 0.5) * dsum / static_cast<double>(n);
     model.fixed.assign(n, 0);
     for (std::size_t k = 0; k < n; ++k) model.fixed[k] = model.position[k].z < cut ? 1 : 0;
@@ -117,8 +122,9 @@ UniaxialCompressionSpecimen prepare_uniaxial_compression(const Packing& bonded_m
         ++result.glued_particles;
       }
     if (result.glued_particles == 0 || !(grip_bottom > substrate_top))
-      fail_input("compression test: the glued plate layers and the substrate meet (sample too thin for "
-                 "plate_layers + substrate_layers)");
+      fail_input(
+          "compression test: the glued plate layers and the substrate meet (sample too thin for "
+          "plate_layers + substrate_layers)");
   }
   if (result.fixed_particles == 0 || result.fixed_particles + result.glued_particles >= n)
     fail_input(fmt::format("compression test: {} of {} particles are fixed; the substrate must hold some but not all",
@@ -138,7 +144,9 @@ UniaxialCompressionSpecimen prepare_uniaxial_compression(const Packing& bonded_m
     }
     model.bonds = std::move(kept);
   }
-  if (model.bonds.empty()) fail_input("compression test: no load-bearing bonds left (all between fixed particles or across opened boundaries)");
+  if (model.bonds.empty())
+    fail_input(
+        "compression test: no load-bearing bonds left (all between fixed particles or across opened boundaries)");
   result.bonds = model.bonds.size();
   result.particles = n;
 

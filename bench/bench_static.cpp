@@ -1,0 +1,216 @@
+// The quasi-static solver (docs/static-solver.md) on the papers' large cases:
+//   bench_static compress [THREADS] [FILE] [BACKEND] [MAX_BREAKS] [SAVE]
+//     the ~54,000-particle FCC inverse opal of docs/opal.md (bench/opal_case.hpp; FILE "-"), or
+//     the bonded model / particle packing in FILE: Young's modulus from one solve, then the
+//     strength curve by sequential linear analysis until the test's stop rule or MAX_BREAKS
+//     bond breaks (0: no limit; -1: modulus only). SAVE: write the model built to this file.
+//   bench_static compare CSV
+//     static against dynamic on small disordered models, one row per test (the data of
+//     docs/static-solver.md, examples/static/compare.sh): G' of a 70 %-diluted FCC network of
+//     contact bonds (touching, and with a gap of 1e-3 d; strain amplitude 1e-3 and 1e-4), and E
+//     and strength of 300-particle force-biased samples with elastic bonds (seeds 1-3; eq. 16 on
+//     compressed bonds too, so that the peak lies within 5 % strain).
+//   bench_static shear [THREADS] [FILE] [BACKEND]
+//     G' in the six orientations of the N_S = 8000 VEM structure
+//     (examples/shear/data/vem_ns8000_nv2000.xyz, contact bonds at 1.01 x 2r, Table 1), already
+//     relaxed: one solve per orientation.
+// BACKEND: auto, cholmod or eigen. Prints the unknowns, nonzeros of the matrix and of the
+// factor, bytes per bond, seconds per phase; last line: packlab static ... .
+#include <fmt/format.h>
+
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <limits>
+#include <numbers>
+#include <string>
+
+#include "opal_case.hpp"
+#include "packlab/core/random.hpp"
+#include "packlab/core/thread_wait.hpp"
+#include "packlab/generate/bonding.hpp"
+#include "packlab/generate/lattice.hpp"
+#include "packlab/io/packing_io.hpp"
+#include "packlab/mechanics/opal_materials.hpp"
+#include "packlab/mechanics/static_loading.hpp"
+#include "packlab/mechanics/uniaxial_compression.hpp"
+
+using namespace packlab;
+using namespace packlab::bench;
+
+namespace {
+
+int compress(int argc, char** argv) {
+  const int threads = argc > 2 ? std::atoi(argv[2]) : 1;
+  const std::string file = argc > 3 ? argv[3] : "-";
+  const std::string backend = argc > 4 ? argv[4] : "auto";
+  const long max_breaks = argc > 5 ? std::atol(argv[5]) : -1;
+  const std::string save = argc > 6 ? argv[6] : "";
+  const auto t_build = std::chrono::steady_clock::now();
+  const Packing model = opal_case(file, 4, threads);
+  fmt::print("model: {} particles, {} bonds ({:.1f} s to read or build)\n", model.size(), model.bonds.size(),
+             since(t_build));
+  if (!save.empty()) io::write_packing(model, save);
+
+  mechanics::UniaxialCompressionSetup setup;
+  setup.options.threads = threads;
+  setup.finish(model);
+  mechanics::UniaxialCompressionOptions o = setup.options;
+  o.solver = "static";
+  o.solver_backend = backend;
+  o.max_breaks = max_breaks < 0 ? 1 : max_breaks;
+  if (max_breaks < 0) o.max_strain = 1e-6;  // modulus only: no bond reaches its strength
+  long points = 0;
+  o.on_point = [&](const mechanics::UniaxialCompressionPoint&) { ++points; };
+  const auto t0 = std::chrono::steady_clock::now();
+  const mechanics::UniaxialCompressionResult r = mechanics::run_uniaxial_compression(model, o);
+  const double seconds = since(t0);
+  fmt::print(
+      "E = {:.4g} Pa, strength = {:.4g} Pa at strain {:.4g}, {} bonds broken, {} solves, {} factorizations, "
+      "stop: {}\n",
+      r.youngs_modulus, r.strength, r.strain_at_peak, r.broken_bonds, r.solves, r.factorizations, r.stop_reason);
+  fmt::print(
+      "unknowns {}, matrix nonzeros {} (lower), factor nonzeros {}; assemble + factorize {:.2f} s, solves {:.2f} s "
+      "({} PCG iterations), set-up and links {:.2f} s\n",
+      r.unknowns, r.matrix_nonzeros, r.factor_nonzeros, r.factor_seconds, r.solve_seconds, r.pcg_iterations,
+      seconds - r.factor_seconds - r.solve_seconds);
+  const double bytes_per_bond = static_cast<double>(r.solver_bytes) / static_cast<double>(r.bonds);
+  fmt::print(
+      "packlab static compress N={} bonds={} threads={} backend={} breaks={} wall_s={:.2f} "
+      "solver_bytes_per_bond={:.0f}\n",
+      r.particles, r.bonds, threads, backend, r.broken_bonds, seconds, bytes_per_bond);
+  return 0;
+}
+
+int shear(int argc, char** argv) {
+  const int threads = argc > 2 ? std::atoi(argv[2]) : 1;
+  const std::string file = argc > 3 ? argv[3] : "examples/shear/data/vem_ns8000_nv2000.xyz";
+  const std::string backend = argc > 4 ? argv[4] : "auto";
+  Packing packing = io::read_packing(file);
+  if (packing.bonds.empty()) {
+    generate::BondingOptions bo;
+    bo.cutoff_ratio = 1.01;
+    generate::add_bonds(packing, bo);
+  }
+  mechanics::OscillatoryShearOptions o;
+  o.threads = threads;
+  o.solver = "static";
+  o.solver_backend = backend;
+  o.relax = false;
+  o.orientations = "all";
+  const auto t0 = std::chrono::steady_clock::now();
+  const mechanics::OscillatoryShearResult r = mechanics::run_oscillatory_shear(packing, o);
+  const double seconds = since(t0);
+  std::size_t bytes = 0;
+  for (const auto& run : r.runs) {
+    fmt::print("{}: G' = {:.5g} Pa (plate {:.5g} Pa), {:.2f} s\n", mechanics::orientation_name(run.orientation),
+               run.storage_modulus, run.plate_storage_modulus, run.seconds);
+    bytes = std::max(bytes, run.solver_bytes);
+  }
+  const auto& first = r.runs.front();
+  fmt::print("G' mean {:.5g} Pa, SD {:.3g} Pa over {} orientations\n", r.storage_modulus_mean, r.storage_modulus_std,
+             r.runs.size());
+  fmt::print(
+      "packlab static shear N={} bonds={} threads={} backend={} orientations={} wall_s={:.2f} "
+      "solver_bytes_per_bond={:.0f}\n",
+      first.structure_particles + first.plate_particles, first.bonds, threads, backend, r.runs.size(), seconds,
+      static_cast<double>(bytes) / static_cast<double>(first.bonds));
+  return 0;
+}
+
+int compare(int argc, char** argv) {
+  if (argc < 3) {
+    fmt::print(stderr, "usage: bench_static compare CSV\n");
+    return 2;
+  }
+  std::string csv = "model,variant,orientation,solver,quantity,value,seconds\n";
+  auto row = [&](const std::string& model, const std::string& variant, const std::string& orientation,
+                 const std::string& solver, const std::string& quantity, double value, double seconds) {
+    csv += fmt::format("{},{},{},{},{},{:.8g},{:.3f}\n", model, variant, orientation, solver, quantity, value, seconds);
+    fmt::print("{} {} {} {} {} = {:.6g} ({:.2f} s)\n", model, variant, orientation, solver, quantity, value, seconds);
+  };
+  // G' of a diluted FCC network of contact bonds.
+  const double r0 = 0.25e-6;
+  for (const double gap : {0.0, 1e-3}) {
+    generate::LatticeParams lp;
+    lp.type = generate::LatticeType::fcc;
+    lp.cells = {3, 3, 3};
+    lp.radius = r0;
+    lp.gap = gap * 2 * r0;
+    Packing p = generate::make_lattice(lp);
+    generate::BondingOptions bo;
+    bo.cutoff_ratio = 1.01;
+    generate::add_bonds(p, bo);
+    Bonds kept;
+    Random rng(7);
+    for (std::size_t b = 0; b < p.bonds.size(); ++b)
+      if (rng.uniform() < 0.7) kept.add(p.bonds.i[b], p.bonds.j[b], p.bonds.image[b], 0, p.bonds.rest_length[b]);
+    p.bonds = kept;
+    for (const double amplitude : {1e-3, 1e-4})
+      for (const std::string solver : {"dynamic", "static"}) {
+        mechanics::OscillatoryShearOptions o;
+        o.stiffness_rule = "contact";
+        o.normal_strength = o.shear_strength = std::numeric_limits<double>::infinity();
+        o.cycles = 2;
+        o.steps_per_cycle = 4000;
+        o.orientations = "z:x,x:y";
+        o.threads = 1;
+        o.amplitude = amplitude;
+        o.solver = solver;
+        const mechanics::OscillatoryShearResult r = mechanics::run_oscillatory_shear(p, o);
+        for (const auto& run : r.runs)
+          row("diluted_fcc", fmt::format("gap={:g}d amplitude={:g}", gap, amplitude),
+              mechanics::orientation_name(run.orientation), solver, "storage_modulus", run.storage_modulus,
+              run.seconds);
+      }
+  }
+  // E and strength of force-biased samples, elastic bonds (silica), the automatic quasi-static rate.
+  for (const unsigned seed : {1u, 2u, 3u}) {
+    const double d = 15e-9;
+    const long n = 300;
+    Box box;
+    box.periodic = {true, true, false};
+    const double a = std::cbrt(static_cast<double>(n) * std::numbers::pi / 6 * d * d * d / 0.62 / 1.5);
+    box.length = {a, a, 1.5 * a};
+    generate::FbaParams fp;
+    fp.target_porosity = 0.38;
+    Random rng(seed);
+    const std::vector<double> radii = generate::fba_class_radii(n, generate::SizeClasses{}, rng);
+    Packing p = generate::fba_pack(box, radii, fp, rng).packing;
+    generate::BondingOptions bo;
+    bo.cutoff_ratio = 1.75;
+    generate::add_bonds(p, bo);
+    mechanics::UniaxialCompressionSetup setup;
+    setup.options.threads = 1;
+    setup.options.max_strain = 0.05;
+    setup.options.samples = 300;
+    setup.finish(p);
+    // Eq. 16 on compressed bonds too: the sample then passes its peak (about 2 % strain) well
+    // before max_strain; with stretched bonds only it is still hardening at 5 %.
+    for (auto& b : setup.options.bond_materials) b.compressive_breakage = true;
+    for (const std::string solver : {"dynamic", "static"}) {
+      setup.options.solver = solver;
+      const mechanics::UniaxialCompressionResult r = mechanics::run_uniaxial_compression(p, setup.options);
+      const std::string variant = fmt::format("seed={}", seed);
+      row("fba300_elastic", variant, "z", solver, "youngs_modulus", r.youngs_modulus, r.seconds);
+      row("fba300_elastic", variant, "z", solver, "strength", r.strength, r.seconds);
+      row("fba300_elastic", variant, "z", solver, "strain_at_peak", r.strain_at_peak, r.seconds);
+      row("fba300_elastic", variant, "z", solver, "broken_bonds", static_cast<double>(r.broken_bonds), r.seconds);
+    }
+  }
+  std::FILE* f = std::fopen(argv[2], "w");
+  if (!f) return 2;
+  std::fputs(csv.c_str(), f);
+  std::fclose(f);
+  return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  ensure_passive_thread_wait(argv);  // as the packlab program does (core/thread_wait.hpp)
+  const std::string what = argc > 1 ? argv[1] : "compress";
+  if (what == "shear") return shear(argc, argv);
+  if (what == "compare") return compare(argc, argv);
+  return compress(argc, argv);
+}
