@@ -1,9 +1,10 @@
 // The quasi-static solver (docs/static-solver.md) on the papers' large cases:
-//   bench_static compress [THREADS] [FILE] [BACKEND] [MAX_BREAKS] [SAVE]
+//   bench_static compress [THREADS] [FILE] [BACKEND] [MAX_BREAKS] [SAVE] [CURVE]
 //     the ~54,000-particle FCC inverse opal of docs/opal.md (bench/opal_case.hpp; FILE "-"), or
 //     the bonded model / particle packing in FILE: Young's modulus from one solve, then the
 //     strength curve by sequential linear analysis until the test's stop rule or MAX_BREAKS
-//     bond breaks (0: no limit; -1: modulus only). SAVE: write the model built to this file.
+//     bond breaks (0: no limit; -1: modulus only). SAVE: write the model built to this file
+//     ("-": none); CURVE: write the envelope (one row per break) to this CSV.
 //   bench_static compare CSV
 //     static against dynamic on small disordered models, one row per test (the data of
 //     docs/static-solver.md, examples/static/compare.sh): G' of a 70 %-diluted FCC network of
@@ -26,6 +27,7 @@
 #include <string>
 
 #include "opal_case.hpp"
+#include "packlab/core/error.hpp"
 #include "packlab/core/random.hpp"
 #include "packlab/core/thread_wait.hpp"
 #include "packlab/generate/bonding.hpp"
@@ -46,11 +48,12 @@ int compress(int argc, char** argv) {
   const std::string backend = argc > 4 ? argv[4] : "auto";
   const long max_breaks = argc > 5 ? std::atol(argv[5]) : -1;
   const std::string save = argc > 6 ? argv[6] : "";
+  const std::string curve_file = argc > 7 ? argv[7] : "";
   const auto t_build = std::chrono::steady_clock::now();
   const Packing model = opal_case(file, 4, threads);
   fmt::print("model: {} particles, {} bonds ({:.1f} s to read or build)\n", model.size(), model.bonds.size(),
              since(t_build));
-  if (!save.empty()) io::write_packing(model, save);
+  if (!save.empty() && save != "-") io::write_packing(model, save);
 
   mechanics::UniaxialCompressionSetup setup;
   setup.options.threads = threads;
@@ -65,15 +68,23 @@ int compress(int argc, char** argv) {
   const auto t0 = std::chrono::steady_clock::now();
   const mechanics::UniaxialCompressionResult r = mechanics::run_uniaxial_compression(model, o);
   const double seconds = since(t0);
+  if (!curve_file.empty()) {
+    std::FILE* f = std::fopen(curve_file.c_str(), "w");
+    if (!f) fail_input(fmt::format("cannot write {}", curve_file));
+    fmt::print(f, "break,strain,stress\n");
+    for (std::size_t k = 0; k < r.curve.size(); ++k)
+      fmt::print(f, "{},{:.10g},{:.10g}\n", k, r.curve[k].strain, r.curve[k].stress);
+    std::fclose(f);
+  }
   fmt::print(
       "E = {:.4g} Pa, strength = {:.4g} Pa at strain {:.4g}, {} bonds broken, {} solves, {} factorizations, "
       "stop: {}\n",
       r.youngs_modulus, r.strength, r.strain_at_peak, r.broken_bonds, r.solves, r.factorizations, r.stop_reason);
   fmt::print(
       "unknowns {}, matrix nonzeros {} (lower), factor nonzeros {}; assemble + factorize {:.2f} s, solves {:.2f} s "
-      "({} PCG iterations), set-up and links {:.2f} s\n",
+      "({} PCG iterations), {} downdates {:.2f} s, set-up and links {:.2f} s\n",
       r.unknowns, r.matrix_nonzeros, r.factor_nonzeros, r.factor_seconds, r.solve_seconds, r.pcg_iterations,
-      seconds - r.factor_seconds - r.solve_seconds);
+      r.downdates, r.downdate_seconds, seconds - r.factor_seconds - r.solve_seconds - r.downdate_seconds);
   const double bytes_per_bond = static_cast<double>(r.solver_bytes) / static_cast<double>(r.bonds);
   fmt::print(
       "packlab static compress N={} bonds={} threads={} backend={} breaks={} wall_s={:.2f} "

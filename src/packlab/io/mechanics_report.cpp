@@ -112,6 +112,11 @@ nlohmann::json uniaxial_compression_summary(const mechanics::UniaxialCompression
         {"poisson_ratio", std::isfinite(r.poisson_ratio) ? nlohmann::json(r.poisson_ratio) : nlohmann::json()},
         {"solves", r.solves},
         {"factorizations", r.factorizations},
+        {"downdates", r.downdates},
+        {"pcg_iterations", r.pcg_iterations},
+        {"factor_seconds", r.factor_seconds},
+        {"downdate_seconds", r.downdate_seconds},
+        {"solve_seconds", r.solve_seconds},
         {"matrix_and_factor_bytes", r.solver_bytes},
         {"strength_method", "sequential linear analysis (envelope of the bond breaks)"}};
   }

@@ -216,6 +216,8 @@ UniaxialCompressionResult run_static_uniaxial_compression(const Packing& bonded_
   result.matrix_nonzeros = st.matrix_nonzeros;
   result.factor_nonzeros = st.factor_nonzeros;
   result.pcg_iterations = st.pcg_iterations;
+  result.downdates = st.downdates;
+  result.downdate_seconds = st.downdate_seconds;
   result.factor_seconds = st.factor_seconds + st.assemble_seconds;
   result.solve_seconds = st.solve_seconds;
   result.steps = st.solves;

@@ -5,10 +5,13 @@
 // otherwise or on request. docs/static-solver.md compares the two.
 //
 // Links switched off after the factorization (sequential linear analysis removing broken
-// bonds) change the matrix by a low-rank term: the next solves run preconditioned conjugate
-// gradients on the new matrix with the old factor as the preconditioner (in exact arithmetic
-// r + 1 iterations for a change of rank r), and the matrix is factorized anew when that takes
-// more than `refactor_iterations`.
+// bonds) change the matrix by a low-rank term (rank <= 6 per link). With CHOLMOD the factor is
+// modified in place (a rank-r downdate, cholmod_updown) and each solve is checked against the
+// matrix of the active links and refined by conjugate gradients preconditioned with the factor
+// (usually zero or one iteration). Eigen's factor cannot be modified: the next solves run
+// preconditioned conjugate gradients on the new matrix with the old factor as the
+// preconditioner (in exact arithmetic r + 1 iterations for a change of rank r). Either way the
+// matrix is factorized anew when the refinement takes more than `refactor_iterations`.
 //
 // Particles with no links at all, and mechanisms of the network (a particle held by one contact
 // bond can spin about it), make K singular: a diagonal shift of `regularization` x each diagonal
@@ -32,6 +35,7 @@ struct StaticSolverOptions {
   double regularization = 1e-12;  // relative diagonal shift [-]
   double tolerance = 1e-10;       // PCG: relative residual |r| / |f|
   int refactor_iterations = 40;   // PCG iterations above which the matrix is factorized anew
+  bool modify_factor = true;      // CHOLMOD: take switched-off links out of the factor (downdate)
   int threads = 1;                // BLAS threads of the CHOLMOD factorization
 };
 
@@ -47,7 +51,8 @@ struct StaticSolverStats {
   int factorizations = 0;
   long solves = 0;
   long pcg_iterations = 0;
-  double assemble_seconds = 0.0, factor_seconds = 0.0, solve_seconds = 0.0;
+  long downdates = 0;  // links taken out of the factor by a rank update
+  double assemble_seconds = 0.0, factor_seconds = 0.0, solve_seconds = 0.0, downdate_seconds = 0.0;
 };
 
 class StaticSolver {
@@ -72,12 +77,15 @@ class StaticSolver {
 
  private:
   void factorize();
+  int refine(const std::vector<double>& f, std::vector<double>& x);
   const StaticLinks& links_;
   StaticSolverOptions options_;
   std::vector<std::uint8_t> active_;
   StiffnessAssembly assembly_;
   std::unique_ptr<Factor> factor_;
-  bool matrix_changed_ = false;  // links deactivated since the last factorization
+  bool matrix_changed_ = false;  // links deactivated and not taken out of the factor
+  bool factor_valid_ = false;    // false after a failed downdate
+  long downdates_since_factorization_ = 0;
   StaticSolverStats stats_;
 };
 

@@ -273,41 +273,77 @@ std::size_t StiffnessAssembly::bytes() const {
          (neighbor_start_.size() + neighbor_.size() + link_block_.size() + free_index_.size()) * sizeof(int);
 }
 
-void StiffnessAssembly::assemble(std::span<const std::uint8_t> active, double regularization) {
-  std::fill(values_.begin(), values_.end(), 0.0);
+void StiffnessAssembly::add_link(std::size_t k, double scale) {
   auto diagonal_add = [&](std::size_t p, const std::array<double, 36>& K) {
     for (int c = 0; c < 6; ++c)
       for (int r = c; r < 6; ++r)
         values_[static_cast<std::size_t>(column_start_[6 * p + static_cast<std::size_t>(c)] + (r - c))] +=
-            K[static_cast<std::size_t>(6 * r + c)];
+            scale * K[static_cast<std::size_t>(6 * r + c)];
   };
-  for (std::size_t k = 0; k < links_.size(); ++k) {
-    if (!active.empty() && !active[k]) continue;
-    const int a = free_index_[static_cast<std::size_t>(links_.i[k])],
-              b = free_index_[static_cast<std::size_t>(links_.j[k])];
-    if (a < 0 && b < 0) continue;
-    const auto K = link_stiffness(links_, k);  // ii, ij, ji, jj
-    if (a >= 0 && a == b) {
-      // A particle bonded to its own periodic image: the four blocks act on one particle.
-      std::array<double, 36> sum{};
-      for (std::size_t e = 0; e < 36; ++e) sum[e] = K[0][e] + K[1][e] + K[2][e] + K[3][e];
-      diagonal_add(static_cast<std::size_t>(a), sum);
-      continue;
-    }
-    if (a >= 0) diagonal_add(static_cast<std::size_t>(a), K[0]);
-    if (b >= 0) diagonal_add(static_cast<std::size_t>(b), K[3]);
-    if (a >= 0 && b >= 0) {
-      // The block below the diagonal: rows of the larger index, columns of the smaller.
-      const bool i_first = a < b;
-      const auto col = static_cast<std::size_t>(std::min(a, b));
-      const auto& block = i_first ? K[2] : K[1];  // (rows j, cols i) = K_ji, or (rows i, cols j) = K_ij
-      for (int c = 0; c < 6; ++c) {
-        const int start = column_start_[6 * col + static_cast<std::size_t>(c)] + (6 - c) + 6 * link_block_[k];
-        for (int r = 0; r < 6; ++r)
-          values_[static_cast<std::size_t>(start + r)] += block[static_cast<std::size_t>(6 * r + c)];
-      }
+  const int a = free_index_[static_cast<std::size_t>(links_.i[k])],
+            b = free_index_[static_cast<std::size_t>(links_.j[k])];
+  if (a < 0 && b < 0) return;
+  const auto K = link_stiffness(links_, k);  // ii, ij, ji, jj
+  if (a >= 0 && a == b) {
+    // A particle bonded to its own periodic image: the four blocks act on one particle.
+    std::array<double, 36> sum{};
+    for (std::size_t e = 0; e < 36; ++e) sum[e] = K[0][e] + K[1][e] + K[2][e] + K[3][e];
+    diagonal_add(static_cast<std::size_t>(a), sum);
+    return;
+  }
+  if (a >= 0) diagonal_add(static_cast<std::size_t>(a), K[0]);
+  if (b >= 0) diagonal_add(static_cast<std::size_t>(b), K[3]);
+  if (a >= 0 && b >= 0) {
+    // The block below the diagonal: rows of the larger index, columns of the smaller.
+    const bool i_first = a < b;
+    const auto col = static_cast<std::size_t>(std::min(a, b));
+    const auto& block = i_first ? K[2] : K[1];  // (rows j, cols i) = K_ji, or (rows i, cols j) = K_ij
+    for (int c = 0; c < 6; ++c) {
+      const int start = column_start_[6 * col + static_cast<std::size_t>(c)] + (6 - c) + 6 * link_block_[k];
+      for (int r = 0; r < 6; ++r)
+        values_[static_cast<std::size_t>(start + r)] += scale * block[static_cast<std::size_t>(6 * r + c)];
     }
   }
+}
+
+LinkStiffness StiffnessAssembly::free_link_stiffness(std::size_t k) const {
+  LinkStiffness out;
+  const int ends[2] = {free_index_[static_cast<std::size_t>(links_.i[k])],
+                       free_index_[static_cast<std::size_t>(links_.j[k])]};
+  if (ends[0] < 0 && ends[1] < 0) return out;
+  const auto K = link_stiffness(links_, k);  // ii, ij, ji, jj
+  // Local dof l (0..11) of the link -> its row in `out` (a particle bonded to its own image
+  // has one set of six).
+  int slot[12];
+  for (int e = 0; e < 2; ++e) {
+    if (ends[e] < 0) {
+      for (int c = 0; c < 6; ++c) slot[6 * e + c] = -1;
+      continue;
+    }
+    const bool same = e == 1 && ends[0] == ends[1];
+    for (int c = 0; c < 6; ++c) {
+      if (same) {
+        slot[6 + c] = slot[c];
+        continue;
+      }
+      slot[6 * e + c] = out.size;
+      out.unknown[static_cast<std::size_t>(out.size++)] = 6 * ends[e] + c;
+    }
+  }
+  for (int r = 0; r < 12; ++r)
+    for (int c = 0; c < 12; ++c) {
+      if (slot[r] < 0 || slot[c] < 0) continue;
+      const auto& block = K[static_cast<std::size_t>(2 * (r / 6) + c / 6)];
+      out.matrix[static_cast<std::size_t>(12 * slot[r] + slot[c])] +=
+          block[static_cast<std::size_t>(6 * (r % 6) + c % 6)];
+    }
+  return out;
+}
+
+void StiffnessAssembly::assemble(std::span<const std::uint8_t> active, double regularization) {
+  std::fill(values_.begin(), values_.end(), 0.0);
+  for (std::size_t k = 0; k < links_.size(); ++k)
+    if (active.empty() || active[k]) add_link(k, 1.0);
   // Translations and rotations have different units (N/m against N m/rad, ~r^2 apart): the
   // shift is relative to each entry, and to the mean of its kind for an entry that is zero (a
   // particle without links).

@@ -74,6 +74,14 @@ dem::ContactForces link_forces(const StaticLinks& links, std::span<const double>
 // The sparse symmetric stiffness matrix over the free degrees of freedom, lower triangle in
 // compressed columns (CHOLMOD's and Eigen's layout), with the coupling to the prescribed ones.
 // Built once per pattern; values() can be refilled after links are switched off.
+// The stiffness of one link over its free unknowns (6 or 12; 6 for a particle bonded to its own
+// periodic image or to a prescribed one): `matrix` row-major with leading dimension 12.
+struct LinkStiffness {
+  int size = 0;
+  std::array<int, 12> unknown{};
+  std::array<double, 144> matrix{};
+};
+
 class StiffnessAssembly {
  public:
   // `prescribed`: per particle, 1 when its six degrees of freedom are given (fixed or driven
@@ -84,6 +92,11 @@ class StiffnessAssembly {
   // `regularization` x each diagonal entry to it (x the mean diagonal entry of translations or
   // rotations where it is zero).
   void assemble(std::span<const std::uint8_t> active, double regularization);
+  // Adds scale x link k's stiffness to the values (scale -1: takes a broken link out of the
+  // assembled matrix, keeping the regularization of the last assembly).
+  void add_link(std::size_t k, double scale);
+  // Link k's stiffness over the free unknowns it touches (a low-rank update of the matrix).
+  LinkStiffness free_link_stiffness(std::size_t k) const;
   // Right-hand side of K_ff q_f = f: -K_fp q_p - B^T D (H d) over the active links, for the
   // displacements q (6 per particle; only the prescribed particles' entries are read).
   std::vector<double> load(std::span<const double> q, const DisplacementGradient& gradient,

@@ -133,7 +133,8 @@ struct UniaxialCompressionResult {
   std::size_t solver_bytes = 0;                                        // static: matrix and factor memory [B]
   std::size_t unknowns = 0, matrix_nonzeros = 0, factor_nonzeros = 0;  // static
   long pcg_iterations = 0;                                             // static
-  double factor_seconds = 0.0, solve_seconds = 0.0;                    // static [s]
+  long downdates = 0;                                                  // static: bonds taken out of the factor
+  double factor_seconds = 0.0, solve_seconds = 0.0, downdate_seconds = 0.0;  // static [s]
   Packing model;  // the model as run (final positions, bond states)
   double seconds = 0.0;
 };
