@@ -16,9 +16,9 @@
 // The contact law runs over blocks of 64 listed pairs into per-component arrays (PairBlock):
 // no branch on whether a pair touches (its result is masked), so the loop vectorizes; the
 // forces are then added to the particles in a short scalar loop. packlab is compiled without
-// fused multiply-add contraction (-ffp-contract=off, CMakeLists.txt): a pair's force must not depend on whether it falls in
-// the vector body or the scalar remainder of that loop, which differ in where the compiler
-// fuses multiply-adds, and a pair's place in a block depends on the thread count.
+// fused multiply-add contraction (-ffp-contract=off, CMakeLists.txt): a pair's force must not depend on whether it
+// falls in the vector body or the scalar remainder of that loop, which differ in where the compiler fuses
+// multiply-adds, and a pair's place in a block depends on the thread count.
 #include <omp.h>
 
 #include <algorithm>
@@ -74,6 +74,10 @@ void Engine::partition_work() {
       if (std::max(bonds_.i[b], bonds_.j[b]) >= w.particle_end) w.crossing_bonds.push_back(q);
     }
     w.crossing_bond_results.resize(w.crossing_bonds.size());
+    // A bond breaks at most once per step and each is evaluated by one thread: with room for
+    // all of this range's bonds, recording a break never allocates, so nothing in the step's
+    // parallel region can throw (an exception there, between barriers, would abort).
+    w.breaks.reserve(static_cast<std::size_t>(bond_first_[w.particle_end] - bond_first_[w.particle_begin]));
   }
 }
 
