@@ -109,3 +109,20 @@ TEST(BadPackings, MemoryExhaustedInsideAParallelRegionIsOneMessageAndExitCodeTwo
     EXPECT_LE(std::count(output.begin(), output.end(), '\n'), 1) << output;
   }
 }
+
+TEST(BadOutputs, InputRefusedOnceTheRunStartsLeavesNoEmptyOutputFolder) {
+  TempDir dir("no-empty-folder");
+  ASSERT_EQ(run_packlab("generate lattice --type sc --cells 3 3 6 --out " + dir.file("sc.xyz")).exit_code, 0);
+  std::ofstream(dir.file("bad.xyz")) << "garbage\n";
+  // A packing without bonds is refused by the tests only after they started; a bad file among
+  // the inputs of analyze only when analyze reaches it.
+  expect_refused("test compress " + dir.file("sc.xyz") + " --quiet --out " + dir.file("c"), "no bonds");
+  expect_refused("test shear " + dir.file("sc.xyz") + " --quiet --out " + dir.file("s"), "no intact bond");
+  expect_refused("analyze " + dir.file("bad.xyz") + " --quiet --out " + dir.file("a"), "garbage");
+  expect_refused("analyze rdf " + dir.file("bad.xyz") + " --quiet --out " + dir.file("r"), "garbage");
+  for (const char* out : {"c", "s", "a", "r"}) EXPECT_FALSE(std::filesystem::exists(dir.file(out))) << out;
+  // A folder that existed before stays.
+  std::filesystem::create_directories(dir.file("kept"));
+  expect_refused("test compress " + dir.file("sc.xyz") + " --quiet --out " + dir.file("kept"), "no bonds");
+  EXPECT_TRUE(std::filesystem::exists(dir.file("kept")));
+}

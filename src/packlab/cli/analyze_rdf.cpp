@@ -154,7 +154,7 @@ void add_analyze_rdf(CLI::App& analyze) {
     const std::size_t nf = opt->files.size();
     std::vector<Packing> packings(nf);
     for (std::size_t f = 0; f < nf; ++f) packings[f] = io::read_packing(opt->files[f]);
-    io::ensure_directory(opt->out);  // after the inputs: a bad file leaves no empty folder
+    const io::OutputFolder folder(opt->out);  // after the inputs; removed again on a later error
     std::vector<analyze::Rdf> parts(nf, analyze::Rdf(opt->params));
     // Realizations in parallel, one thread each; merged in file order (deterministic).
     const int threads = opt->params.threads > 0 ? opt->params.threads : omp_get_max_threads();

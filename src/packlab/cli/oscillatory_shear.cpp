@@ -69,7 +69,7 @@ void add_test_shear(CLI::App& test) {
         mechanics::validate(options);
         const Packing packing = io::read_packing(c.in);
         const std::filesystem::path dir = c.out;
-        io::ensure_directory(dir);
+        const io::OutputFolder folder(dir);  // removed again when the model is refused
         const long per_run = options.steps_per_cycle * options.cycles;
         const auto orientations = mechanics::shear_orientations(options.orientations);
         Progress progress("test shear", per_run * static_cast<long>(orientations.size()), !c.quiet);

@@ -50,7 +50,7 @@ void add_test_compress(CLI::App& test) {
         s.finish(model);
         s.options.validate();
         const std::filesystem::path dir = c.out;
-        io::ensure_directory(dir);
+        const io::OutputFolder folder(dir);  // removed again when the model is refused
         Progress progress("compress", 1000, !c.quiet);
         const double max_strain = s.options.max_strain;
         s.options.on_point = [&](const mechanics::UniaxialCompressionPoint& p) {
