@@ -185,8 +185,16 @@ inline io::ConfigSchema apply_keywords(io::ConfigSchema schema, const py::kwargs
       v = value.cast<bool>();
     else if (py::isinstance<py::str>(value))
       v = value.cast<std::string>();
-    else if (py::hasattr(value, "__index__"))
-      v = py::int_(value).cast<std::int64_t>();
+    else if (py::hasattr(value, "__index__")) {
+      // Python integers have no bound: one beyond int64 (seed=2**64) is out of every integer
+      // key's range, said as the command line says it (not pybind11's cast error).
+      const py::int_ integer(value);
+      try {
+        v = integer.cast<std::int64_t>();
+      } catch (const py::cast_error&) {
+        fail_input(fmt::format("{} = {}: out of range", name, std::string(py::repr(integer))));
+      }
+    }
     else if (py::hasattr(value, "__float__"))
       v = value.cast<double>();
     else

@@ -40,3 +40,10 @@ def test_malformed_file_names_file_and_line(tmp_path, cli):
 def test_bad_input_raises(call):
     with pytest.raises(packlab.InputError):
         call()
+
+
+@pytest.mark.parametrize("seed", [-1, 2**63, 2**64, -(2**70), 1e23])
+def test_seeds_out_of_range_are_input_errors(seed):
+    # Python integers are unbounded: beyond int64 too the message is the command line's.
+    with pytest.raises(packlab.InputError, match=r"seed = .*: (out of range|must be an integer)"):
+        packlab.generate_random(particles=10, radius=0.5, phi=0.1, seed=seed)

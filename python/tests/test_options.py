@@ -27,7 +27,7 @@ PORTED = [
 ]
 
 # Flags that steer the run rather than set an option (input, output, resuming, verbosity).
-RUN_CONTROL = {"--help", "--config", "--out", "--resume", "--no-plots", "--no-vtu", "--check", "--quiet", "--log"}
+RUN_CONTROL = {"--help", "--config", "--out", "--resume", "--no-plots", "--no-vtu", "--check", "--quiet", "--log", "--checkpoint"}
 
 
 def section(cli, command):

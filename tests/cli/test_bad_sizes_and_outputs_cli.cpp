@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <string>
@@ -79,4 +80,49 @@ TEST(BadPackings, TwoParticlesAtOnePointStopTheDemCommands) {
                                        << rest;
   expect_refused("relax " + dir.file("twice.xyz") + " " + dir.file("r.xyz") + " --quiet", "same position");
   EXPECT_FALSE(std::filesystem::exists(dir.file("r.xyz")));
+}
+
+TEST(BadPackings, MemoryExhaustedInsideAParallelRegionIsOneMessageAndExitCodeTwo) {
+  // 10^5 spheres at one point: each lists every other as a neighbour, and under a 700 MB
+  // address-space limit the pair lists run out of memory inside the neighbour search's OpenMP
+  // region. That used to abort (std::terminate, exit 134); now the bad_alloc leaves the region
+  // (core/parallel_errors.hpp) and main prints its out-of-memory line.
+  TempDir dir("one-point");
+  {
+    std::ofstream f(dir.file("point.xyz"));
+    f << "100000\nLattice=\"1 0 0 0 1 0 0 0 1\" Origin=\"0 0 0\" pbc=\"T T T\" "
+         "Properties=species:S:1:pos:R:3:radius:R:1\n";
+    for (int k = 0; k < 100000; ++k) f << "T0 0.5 0.5 0.5 0.001\n";
+  }
+  for (const char* threads : {"1", "2"}) {
+    const std::string cmd = std::string("bash -c 'ulimit -v 700000; OMP_NUM_THREADS=") + threads + " exec " +
+                            PACKLAB_BINARY + " info " + dir.file("point.xyz") + "' 2>&1";
+    FILE* pipe = ::popen(cmd.c_str(), "r");
+    std::string output;
+    char buffer[4096];
+    while (pipe && std::fgets(buffer, sizeof buffer, pipe)) output += buffer;
+    const int status = pipe ? ::pclose(pipe) : -1;
+    ASSERT_TRUE(WIFEXITED(status)) << output;
+    EXPECT_EQ(WEXITSTATUS(status), 2) << threads << " threads: " << output;
+    EXPECT_TRUE(output.find("out of memory") != std::string::npos || output.find("coincident") != std::string::npos)
+        << output;
+    EXPECT_LE(std::count(output.begin(), output.end(), '\n'), 1) << output;
+  }
+}
+
+TEST(BadOutputs, InputRefusedOnceTheRunStartsLeavesNoEmptyOutputFolder) {
+  TempDir dir("no-empty-folder");
+  ASSERT_EQ(run_packlab("generate lattice --type sc --cells 3 3 6 --out " + dir.file("sc.xyz")).exit_code, 0);
+  std::ofstream(dir.file("bad.xyz")) << "garbage\n";
+  // A packing without bonds is refused by the tests only after they started; a bad file among
+  // the inputs of analyze only when analyze reaches it.
+  expect_refused("test compress " + dir.file("sc.xyz") + " --quiet --out " + dir.file("c"), "no bonds");
+  expect_refused("test shear " + dir.file("sc.xyz") + " --quiet --out " + dir.file("s"), "no intact bond");
+  expect_refused("analyze " + dir.file("bad.xyz") + " --quiet --out " + dir.file("a"), "garbage");
+  expect_refused("analyze rdf " + dir.file("bad.xyz") + " --quiet --out " + dir.file("r"), "garbage");
+  for (const char* out : {"c", "s", "a", "r"}) EXPECT_FALSE(std::filesystem::exists(dir.file(out))) << out;
+  // A folder that existed before stays.
+  std::filesystem::create_directories(dir.file("kept"));
+  expect_refused("test compress " + dir.file("sc.xyz") + " --quiet --out " + dir.file("kept"), "no bonds");
+  EXPECT_TRUE(std::filesystem::exists(dir.file("kept")));
 }

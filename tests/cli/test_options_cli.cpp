@@ -15,14 +15,26 @@ using packlab::test::run_packlab;
 
 namespace {
 
-const char* const ported[] = {"generate lattice", "generate random", "generate vem", "generate ls",
-                              "generate scrm",    "generate fba",    "build opal",   "shake",
-                              "bond",             "relax",           "test shear",   "calibrate shear",
-                              "test compress",    "calibrate compress", "analyze", "analyze rdf"};
+const char* const ported[] = {"generate lattice",
+                              "generate random",
+                              "generate vem",
+                              "generate ls",
+                              "generate scrm",
+                              "generate fba",
+                              "build opal",
+                              "shake",
+                              "bond",
+                              "relax",
+                              "test shear",
+                              "calibrate shear",
+                              "test compress",
+                              "calibrate compress",
+                              "analyze",
+                              "analyze rdf"};
 
 // Flags that steer the run rather than set an option.
-const std::set<std::string> run_control{"--help",     "--config", "--out",   "--resume", "--no-plots",
-                                        "--no-vtu",   "--check",  "--quiet", "--log"};
+const std::set<std::string> run_control{"--help",   "--config", "--out",   "--resume", "--no-plots",
+                                        "--no-vtu", "--check",  "--quiet", "--log",    "--checkpoint"};
 
 std::string flag_of(std::string key) {
   for (char& c : key)

@@ -1,7 +1,9 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 #include <numbers>
+#include <string>
 
 #include "packlab/core/error.hpp"
 #include "packlab/core/random.hpp"
@@ -292,4 +294,24 @@ TEST(Engine, RejectsBadParameters) {
   p.radius[3] = -1.0;
   config.contact_law = "linear";
   EXPECT_THROW(Engine(p, config), InputError);
+}
+
+TEST(Engine, ARunThatTurnsNonFiniteStopsAtTheNextMeasuredStepNamingAParticle) {
+  Packing p = dense_random(250, 0.66, 13);
+  EngineConfig config;
+  config.types = {Material{1000.0, 100.0, 0.3, 1000.0, 0.7}};
+  config.threads = 2;
+  Engine engine(p, config);
+  engine.run(10);
+  const std::size_t k = 17;
+  engine.particles().velocity[k].y = std::numeric_limits<double>::quiet_NaN();
+  engine.run(3);  // unmeasured steps do not look
+  try {
+    (void)engine.step_measured();
+    FAIL() << "no error for a NaN velocity";
+  } catch (const InputError& e) {
+    const std::string message = e.what();
+    EXPECT_NE(message.find("step 13: the run became non-finite at particle "), std::string::npos) << message;
+    EXPECT_NE(message.find("time step"), std::string::npos) << message;
+  }
 }

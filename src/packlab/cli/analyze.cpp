@@ -133,7 +133,7 @@ void run_analyze(const AnalyzeOptions& opt) {
   analyze::Rdf rdf(rdf_params);
   std::vector<Packing> rdf_packings;  // for the class volume fractions
   const std::filesystem::path dir = opt.out;
-  io::ensure_directory(dir);
+  const io::OutputFolder folder(dir);  // removed again if the first file is bad
   Random rng(opt.seed);
 
   nlohmann::json report = io::report_header("analyze");

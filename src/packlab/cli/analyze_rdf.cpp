@@ -16,6 +16,7 @@
 #include "packlab/cli/options.hpp"
 #include "packlab/cli/scrm_common.hpp"
 #include "packlab/core/error.hpp"
+#include "packlab/core/parallel_errors.hpp"
 #include "packlab/io/atomic_file.hpp"
 #include "packlab/io/options.hpp"
 #include "packlab/io/packing_io.hpp"
@@ -150,28 +151,30 @@ void add_analyze_rdf(CLI::App& analyze) {
     opt->flags->load();
     opt->flags->schema().validate();
     opt->params = opt->validated();
-    io::ensure_directory(opt->out);
     const std::size_t nf = opt->files.size();
     std::vector<Packing> packings(nf);
     for (std::size_t f = 0; f < nf; ++f) packings[f] = io::read_packing(opt->files[f]);
+    const io::OutputFolder folder(opt->out);  // after the inputs; removed again on a later error
     std::vector<analyze::Rdf> parts(nf, analyze::Rdf(opt->params));
     // Realizations in parallel, one thread each; merged in file order (deterministic).
     const int threads = opt->params.threads > 0 ? opt->params.threads : omp_get_max_threads();
-    std::string error;
+    // Bad input names its file; an allocation failure stays a bad_alloc (main's out-of-memory
+    // message); either leaves the region through ParallelErrors, not std::terminate.
+    ParallelErrors errors;
 #pragma omp parallel for schedule(dynamic) num_threads(threads) if (nf > 1)
-    for (long f = 0; f < static_cast<long>(nf); ++f) {
-      analyze::RdfParams p = opt->params;
-      p.threads = nf > 1 ? 1 : threads;
-      try {
-        analyze::Rdf r(p);
-        r.compute(packings[f]);
-        parts[f] = r;
-      } catch (const std::exception& e) {
-#pragma omp critical
-        if (error.empty()) error = opt->files[f] + ": " + e.what();
-      }
-    }
-    if (!error.empty()) fail_input(error);
+    for (long f = 0; f < static_cast<long>(nf); ++f)
+      errors.run(f, [&] {
+        analyze::RdfParams p = opt->params;
+        p.threads = nf > 1 ? 1 : threads;
+        try {
+          analyze::Rdf r(p);
+          r.compute(packings[static_cast<std::size_t>(f)]);
+          parts[static_cast<std::size_t>(f)] = r;
+        } catch (const InputError& e) {
+          fail_input(opt->files[static_cast<std::size_t>(f)] + ": " + e.what());
+        }
+      });
+    errors.rethrow();
     analyze::Rdf total(opt->params);
     for (const auto& r : parts) total.add(r);
     std::vector<double> cvf(total.classes(), 0.0);

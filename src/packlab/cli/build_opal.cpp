@@ -44,7 +44,7 @@ void add_build_opal(CLI::App& build) {
         double mean_d = 0;  // the profile's slab thickness
         for (double r : in.radius) mean_d += 2.0 * r;
         mean_d /= static_cast<double>(in.size());
-        io::ensure_directory(c.out);
+        const io::OutputFolder folder(c.out);  // removed again on an error before any output
         generate::OpalSummary s;
         const Packing model = generate::build_opal(in, o, &s, [&](const std::string& phase, double) {
           if (!c.quiet && phase != "done") fmt::print(stderr, "build opal: {}\n", phase);

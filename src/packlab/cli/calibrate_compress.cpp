@@ -46,7 +46,7 @@ void add_calibrate_compress(CLI::App& calibrate) {
           require(run.target_strength > 0.0, "--target-strength", run.target_strength, "> 0 Pa");
         }
         const std::filesystem::path dir = command.out;
-        io::ensure_directory(dir);
+        const io::OutputFolder folder(dir);  // removed again when the model is refused
         nlohmann::json report = io::report_header("calibrate compress");
         report["input"] = command.in;
         if (run.bulk_factor) {

@@ -33,7 +33,7 @@ void add_calibrate_shear(CLI::App& calibrate) {
         mechanics::validate(options);
         const Packing packing = io::read_packing(c.in);
         const std::filesystem::path dir = c.out;
-        io::ensure_directory(dir);
+        const io::OutputFolder folder(dir);  // removed again when the model is refused
         const auto result = mechanics::calibrate_normal_stiffness(packing, run.target_storage_modulus, options,
                                                                   run.tolerance, static_cast<int>(run.max_iterations));
         std::ostringstream csv;

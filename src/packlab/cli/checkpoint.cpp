@@ -2,7 +2,9 @@
 
 #include <fmt/format.h>
 
+#include <csignal>
 #include <cstdint>
+#include <cstdlib>
 #include <fstream>
 
 #include "packlab/cli/options.hpp"
@@ -81,6 +83,9 @@ void CheckpointWriter::write_if_due(const std::function<void(std::ostream&)>& st
 void CheckpointWriter::write(const std::function<void(std::ostream&)>& state) {
   write_command_checkpoint(dir_, settings_, input_, state);
   last_ = std::chrono::steady_clock::now();
+  ++written_;
+  if (const char* kill_after = std::getenv("PACKLAB_KILL_AFTER_CHECKPOINTS"))
+    if (std::atol(kill_after) == written_) ::raise(SIGKILL);
 }
 
 }  // namespace packlab::cli

@@ -41,6 +41,10 @@ SavedRun read_command_checkpoint(const std::filesystem::path& dir, const io::Con
 
 // Writes the checkpoint when `seconds` of wall time have passed since the last one (or the
 // start), and on demand at the end.
+//
+// Test hook: with PACKLAB_KILL_AFTER_CHECKPOINTS=N in the environment the process kills itself
+// with SIGKILL right after its N-th checkpoint (a kill -9 at a known point, so that the resume
+// tests interrupt a run at the same place every time, however fast the machine is).
 class CheckpointWriter {
  public:
   CheckpointWriter(std::filesystem::path dir, const io::ConfigSchema& settings, std::string input, double seconds)
@@ -53,6 +57,7 @@ class CheckpointWriter {
   const io::ConfigSchema& settings_;
   std::string input_;
   double seconds_;
+  long written_ = 0;
   std::chrono::steady_clock::time_point last_ = std::chrono::steady_clock::now();
 };
 

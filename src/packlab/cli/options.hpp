@@ -117,7 +117,8 @@ struct CommandParts {
   bool output_positional = false;  // OUT after IN instead of --out
   bool plots = false;              // --no-plots
   bool validate = true;            // check every option against its range before running
-  bool resumable = false;          // --resume DIR (cli/checkpoint.hpp); then input and --out are optional
+  bool resumable = false;          // --resume DIR (cli/checkpoint.hpp); then input and output are optional
+                                   // (an output file, output_positional, is then the command's to restore)
 };
 
 // --resume DIR of a resumable command: refuses --config, every flag of the set but --threads,
@@ -140,8 +141,10 @@ CLI::App* add_option_command(CLI::App& parent, const std::string& name, const st
     CLI::Option* in = cmd->add_option("in", command->in, parts.input);
     if (!resumable) in->required();
   }
-  if (parts.output != nullptr && parts.output_positional)
-    cmd->add_option("out", command->out, parts.output)->required();
+  if (parts.output != nullptr && parts.output_positional) {
+    CLI::Option* out = cmd->add_option("out", command->out, parts.output);
+    if (!resumable) out->required();
+  }
   command->flags = std::make_unique<OptionFlags>(cmd, declare(command->settings));
   if (parts.output != nullptr && !parts.output_positional) {
     CLI::Option* out = cmd->add_option("--out", command->out, parts.output);
@@ -154,14 +157,20 @@ CLI::App* add_option_command(CLI::App& parent, const std::string& name, const st
   if (parts.plots) cmd->add_flag("--no-plots", command->no_plots, "Do not make PNG plots");
   cmd->add_flag("--quiet", command->quiet, "No progress output");
   const bool validate = parts.validate, takes_input = parts.input != nullptr;
-  cmd->callback([command, run, validate, resumable, takes_input] {
+  const bool out_file = parts.output_positional;
+  cmd->callback([command, run, validate, resumable, takes_input, out_file] {
     if (!command->resume.empty()) {
+      // An output file (not a folder) is the saved run's: the command reads it from its state.
+      if (out_file && !command->out.empty())
+        fail_input("the output file cannot be combined with --resume: the run writes the file it was started with");
       command->resumed.emplace(resume_saved_run(*command->flags, command->resume, command->in, command->out));
       command->in = command->resumed->input;
-      command->out = command->resume;
+      if (!out_file) command->out = command->resume;
     } else {
       if (resumable && takes_input && command->in.empty()) fail_input("the input file: required, or --resume DIR");
-      if (resumable && command->out.empty()) fail_input("--out: required (the output folder), or --resume DIR");
+      if (resumable && command->out.empty())
+        fail_input(out_file ? "the output file: required, or --resume DIR"
+                            : "--out: required (the output folder), or --resume DIR");
       command->flags->load();
     }
     if (validate) command->flags->schema().validate();

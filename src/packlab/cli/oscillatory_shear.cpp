@@ -7,6 +7,11 @@
 // Writes DIR/stress_strain.csv (every sample), DIR/cycles.csv (per cycle and orientation),
 // DIR/shear.png (Fig. 4), DIR/relaxed.vtu (the tested structure with its bonds) and
 // DIR/report.json.
+// packlab test shear --resume DIR [--threads T]
+// The dynamic solver writes DIR/checkpoint.bin after the relaxation and after each orientation
+// (at most every --checkpoint-seconds, and at the end; cli/checkpoint.hpp); --resume DIR runs
+// the orientations still missing and writes the same files as an uninterrupted run (an
+// orientation that was interrupted starts again). The static solver takes no checkpoints.
 #include "packlab/mechanics/oscillatory_shear.hpp"
 
 #include <fmt/format.h>
@@ -16,6 +21,7 @@
 #include <memory>
 #include <numbers>
 
+#include "packlab/cli/checkpoint.hpp"
 #include "packlab/cli/commands.hpp"
 #include "packlab/cli/options.hpp"
 #include "packlab/core/error.hpp"
@@ -50,17 +56,20 @@ std::string cycles_csv(const mechanics::OscillatoryShearResult& result) {
 }  // namespace
 
 void add_test_shear(CLI::App& test) {
-  add_option_command(
+  CLI::App* cmd = add_option_command(
       test, "shear",
       "Oscillatory shear test of a bonded model: storage modulus G' for six orientations (docs/shear.md)",
       io::shear_test_options,
-      {.input = "Bonded model (a file with bonds, e.g. from packlab bond)", .output = "Output folder", .plots = true},
-      [](const OptionCommand<io::ShearTestRun>& c) {
+      {.input = "Bonded model (a file with bonds, e.g. from packlab bond)",
+       .output = "Output folder",
+       .plots = true,
+       .resumable = true},
+      [](OptionCommand<io::ShearTestRun>& c) {
         mechanics::OscillatoryShearOptions options = c.settings.test;
         mechanics::validate(options);
         const Packing packing = io::read_packing(c.in);
         const std::filesystem::path dir = c.out;
-        io::ensure_directory(dir);
+        const io::OutputFolder folder(dir);  // removed again when the model is refused
         const long per_run = options.steps_per_cycle * options.cycles;
         const auto orientations = mechanics::shear_orientations(options.orientations);
         Progress progress("test shear", per_run * static_cast<long>(orientations.size()), !c.quiet);
@@ -78,6 +87,11 @@ void add_test_shear(CLI::App& test) {
           last = done;
           progress.update(offset + done, "orientation " + stage);
         };
+        CheckpointWriter checkpoint(dir, c.flags->schema(), c.in, c.settings.checkpoint_seconds);
+        options.checkpoint = [&](const std::function<void(std::ostream&)>& state, bool end) {
+          end ? checkpoint.write(state) : checkpoint.write_if_due(state);
+        };
+        if (c.resumed) options.resume = &c.resumed->state;
         const mechanics::OscillatoryShearResult result = mechanics::run_oscillatory_shear(packing, options);
         progress.finish();
 
@@ -113,6 +127,9 @@ void add_test_shear(CLI::App& test) {
                 "construction)\n");
         }
       });
+  cmd->footer(
+      "Checkpoints (--checkpoint-seconds, --resume): the dynamic solver writes one after the relaxation and after "
+      "each orientation; --solver static takes none (one linear solve per orientation).");
 }
 
 }  // namespace packlab::cli

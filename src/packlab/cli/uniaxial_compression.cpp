@@ -6,6 +6,10 @@
 // over any packing). Writes DIR/report.json ({"youngs_modulus", "strength", "broken_bonds", ...}
 // in SI), curve.csv, bond_strain.csv, particle_stress.csv, broken_bonds.csv/.vtu, model.vtu and
 // the plots. Flags override the config file.
+// packlab test compress --resume DIR [--threads T]
+// The dynamic solver writes DIR/checkpoint.bin every --checkpoint-seconds and at the end
+// (cli/checkpoint.hpp); --resume DIR goes on from it and writes the same files as an
+// uninterrupted run. The static solver (--solver static) takes no checkpoints.
 #include "packlab/mechanics/uniaxial_compression.hpp"
 
 #include <fmt/format.h>
@@ -16,6 +20,7 @@
 #include <memory>
 #include <sstream>
 
+#include "packlab/cli/checkpoint.hpp"
 #include "packlab/cli/commands.hpp"
 #include "packlab/cli/options.hpp"
 #include "packlab/cli/uniaxial_compression_output.hpp"
@@ -37,14 +42,15 @@ void add_test_compress(CLI::App& test) {
       io::compression_test_options,
       {.input = "Bonded model (.vtu from `packlab build opal` or `packlab bond`)",
        .output = "Output folder",
-       .plots = true},
-      [no_vtu](const OptionCommand<mechanics::UniaxialCompressionSetup>& c) {
+       .plots = true,
+       .resumable = true},
+      [no_vtu](OptionCommand<mechanics::UniaxialCompressionSetup>& c) {
         const Packing model = io::read_packing(c.in);
         mechanics::UniaxialCompressionSetup s = c.settings;
         s.finish(model);
         s.options.validate();
         const std::filesystem::path dir = c.out;
-        io::ensure_directory(dir);
+        const io::OutputFolder folder(dir);  // removed again when the model is refused
         Progress progress("compress", 1000, !c.quiet);
         const double max_strain = s.options.max_strain;
         s.options.on_point = [&](const mechanics::UniaxialCompressionPoint& p) {
@@ -52,6 +58,13 @@ void add_test_compress(CLI::App& test) {
               static_cast<long>(1000.0 * p.strain / max_strain),
               fmt::format("strain {:.4f}, stress {:.4g} MPa, broken {}", p.strain, p.stress * 1e-6, p.broken_bonds));
         };
+        CheckpointWriter checkpoint(dir, c.flags->schema(), c.in, c.settings.checkpoint_seconds);
+        if (s.options.solver != "static") {
+          s.options.checkpoint = [&](const std::function<void(std::ostream&)>& state, bool end) {
+            end ? checkpoint.write(state) : checkpoint.write_if_due(state);
+          };
+          if (c.resumed) s.options.resume = &c.resumed->state;
+        }
         const mechanics::UniaxialCompressionResult r = mechanics::run_uniaxial_compression(model, s.options);
         progress.finish();
         nlohmann::json report = io::report_header("test compress");
@@ -88,6 +101,9 @@ void add_test_compress(CLI::App& test) {
         }
       });
   cmd->add_flag("--no-vtu", *no_vtu, "Do not write the final model (model.vtu)");
+  cmd->footer(
+      "Checkpoints (--checkpoint-seconds, --resume): the dynamic solver writes one every --checkpoint-seconds and "
+      "at the end; --solver static takes none (its linear solves are not checkpointed).");
 }
 
 }  // namespace packlab::cli

@@ -8,6 +8,7 @@
 
 #include "packlab/core/binary_io.hpp"
 #include "packlab/core/error.hpp"
+#include "packlab/core/parallel_errors.hpp"
 
 namespace packlab {
 
@@ -53,8 +54,7 @@ CellGrid make_grid(const Box& box, const std::vector<Vec3>& position, double ran
     for (int a = 0; a < 3; ++a) g.count[a] = std::max(1, g.count[a] / 2);
   }
   for (int a = 0; a < 3; ++a) {
-    const double extent = box.periodic[a] ? box.length[a]
-                                          : std::max(range * g.count[a], 0.0);
+    const double extent = box.periodic[a] ? box.length[a] : std::max(range * g.count[a], 0.0);
     g.size[a] = extent / g.count[a];
     if (!box.periodic[a]) g.size[a] = std::max(g.size[a], range);
   }
@@ -63,8 +63,8 @@ CellGrid make_grid(const Box& box, const std::vector<Vec3>& position, double ran
 
 }  // namespace
 
-void NeighborList::build(const Box& box, std::vector<Vec3>& position, const std::vector<double>& radius,
-                         int threads, std::vector<std::array<int, 3>>* wraps) {
+void NeighborList::build(const Box& box, std::vector<Vec3>& position, const std::vector<double>& radius, int threads,
+                         std::vector<std::array<int, 3>>* wraps) {
   const int n = static_cast<int>(position.size());
   double r_max = 0.0;
   for (double r : radius) r_max = std::max(r_max, r);
@@ -120,9 +120,12 @@ void NeighborList::build(const Box& box, std::vector<Vec3>& position, const std:
   // than max_pairs_per_particle pairs per particle on average, and report the worst particle.
   constexpr long max_pairs_per_particle = 2000;
   int crowded_particle = -1;
+  // A thread's list can still outgrow the free memory below that bound (bad_alloc): caught
+  // here and rethrown after the region (core/parallel_errors.hpp), not an abort.
+  ParallelErrors errors;
 
 #pragma omp parallel num_threads(threads)
-  {
+  errors.run(omp_get_thread_num(), [&] {
     const int t = omp_get_thread_num();
     auto& tp = thread_partner_[t];
     auto& ti = thread_image_[t];
@@ -222,14 +225,16 @@ void NeighborList::build(const Box& box, std::vector<Vec3>& position, const std:
       }
       counts[i] = static_cast<int>(count);
     }
-  }
+  });
+  if (errors.failed()) first_.clear();  // no half-built list survives
+  errors.rethrow();
   if (crowded_particle >= 0) {
     first_.clear();  // no half-built list survives
-    fail_input(fmt::format(
-        "neighbour search: more than {} particles within interaction range of each particle on average "
-        "(particle {} at ({:g}, {:g}, {:g}) has {} partners): coincident or heavily overlapping particles",
-        max_pairs_per_particle, crowded_particle, position[crowded_particle].x, position[crowded_particle].y,
-        position[crowded_particle].z, counts[crowded_particle]));
+    fail_input(
+        fmt::format("neighbour search: more than {} particles within interaction range of each particle on average "
+                    "(particle {} at ({:g}, {:g}, {:g}) has {} partners): coincident or heavily overlapping particles",
+                    max_pairs_per_particle, crowded_particle, position[crowded_particle].x,
+                    position[crowded_particle].y, position[crowded_particle].z, counts[crowded_particle]));
   }
   for (int i = 0; i < n; ++i) first_[i + 1] = first_[i] + counts[i];
   partner_.clear();
@@ -249,8 +254,8 @@ void NeighborList::build(const Box& box, std::vector<Vec3>& position, const std:
       int o = old_first[i];
       const int o_end = old_first[i + 1];
       for (int p = first_[i]; p < first_[i + 1]; ++p) {
-        while (o < o_end && (old_partner[o] < partner_[p] ||
-                             (old_partner[o] == partner_[p] && old_image[o] < image_[p])))
+        while (o < o_end &&
+               (old_partner[o] < partner_[p] || (old_partner[o] == partner_[p] && old_image[o] < image_[p])))
           ++o;
         if (o < o_end && old_partner[o] == partner_[p] && old_image[o] == image_[p]) previous_index_[p] = o;
       }

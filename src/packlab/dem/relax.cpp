@@ -6,6 +6,7 @@
 #include <cmath>
 #include <limits>
 
+#include "packlab/core/binary_io.hpp"
 #include "packlab/core/error.hpp"
 
 namespace packlab::dem {
@@ -24,7 +25,25 @@ RelaxResult relax(Engine& engine, const RelaxOptions& options) {
   require(options.check_interval > 0, "check_interval", static_cast<double>(options.check_interval), "> 0");
   RelaxResult result;
   long done = 0;
-  while (done < options.max_steps) {
+  // The loop's state besides the engine: steps done, the history, whether it converged.
+  const auto save = [&](std::ostream& out) {
+    engine.save_state(out);
+    binary::write(out, done);
+    binary::write(out, static_cast<int>(result.stop));
+    binary::write_vector(out, result.history);
+  };
+  if (options.resume) {
+    engine.load_state(*options.resume);
+    int stop = 0;
+    binary::read(*options.resume, done, "relaxation steps");
+    binary::read(*options.resume, stop, "relaxation stop");
+    binary::read_vector(*options.resume, result.history, "relaxation history");
+    if (done < 0 || done > options.max_steps || (stop != 0 && stop != 1))
+      fail_input("checkpoint is damaged: relaxation state");
+    result.stop = static_cast<RelaxStop>(stop);
+    if (!result.history.empty()) result.last = result.history.back();
+  }
+  while (result.stop != RelaxStop::converged && done < options.max_steps) {
     // Measure on the first step of each interval, run the rest unmeasured.
     const Diagnostics d = engine.step_measured();
     ++done;
@@ -38,15 +57,18 @@ RelaxResult relax(Engine& engine, const RelaxOptions& options) {
     const long chunk = std::min(options.check_interval - 1, options.max_steps - done);
     engine.run(chunk);
     done += chunk;
+    if (options.checkpoint) options.checkpoint(save, false);
   }
+  if (options.checkpoint) options.checkpoint(save, true);
   result.steps = done;
   return result;
 }
 
 std::string ZeroVelocityRelaxResult::reason() const {
-  return converged ? fmt::format("converged: mean unbalanced force stopped decreasing at {:.4g} N (from {:.4g} N) "
-                                 "after {} steps",
-                                 final_unbalanced_force, initial_unbalanced_force, steps)
+  return converged ? fmt::format(
+                         "converged: mean unbalanced force stopped decreasing at {:.4g} N (from {:.4g} N) "
+                         "after {} steps",
+                         final_unbalanced_force, initial_unbalanced_force, steps)
                    : fmt::format("step limit: {} steps run, mean unbalanced force {:.4g} N (from {:.4g} N)", steps,
                                  final_unbalanced_force, initial_unbalanced_force);
 }
@@ -77,8 +99,7 @@ void zero_free_velocities(Engine& engine) {
 ZeroVelocityRelaxResult relax_zeroing_velocities(Engine& engine, const ZeroVelocityRelaxOptions& options) {
   require(options.max_steps >= 0, "steps", static_cast<double>(options.max_steps), ">= 0");
   require(options.check_interval > 0, "check_interval", static_cast<double>(options.check_interval), "> 0");
-  require(options.min_decrease >= 0.0 && options.min_decrease < 1.0, "min_decrease", options.min_decrease,
-          "in [0, 1)");
+  require(options.min_decrease >= 0.0 && options.min_decrease < 1.0, "min_decrease", options.min_decrease, "in [0, 1)");
   require(options.patience > 0, "patience", options.patience, "> 0");
   ZeroVelocityRelaxResult result;
   zero_free_velocities(engine);

@@ -8,6 +8,8 @@
 #pragma once
 
 #include <functional>
+#include <istream>
+#include <ostream>
 #include <string>
 #include <vector>
 
@@ -17,10 +19,16 @@ namespace packlab::dem {
 
 struct RelaxOptions {
   long max_steps = 100000;
-  double tolerance = 1e-3;   // unbalanced force ratio; 0 runs exactly max_steps steps
-  long check_interval = 100; // steps between diagnostics
+  double tolerance = 1e-3;    // unbalanced force ratio; 0 runs exactly max_steps steps
+  long check_interval = 100;  // steps between diagnostics
   // Called after each check with the diagnostics (progress reporting, logging).
   std::function<void(const Diagnostics&)> on_check;
+  // Resumable runs (`packlab relax --checkpoint DIR`, cli/checkpoint.hpp): `checkpoint` is
+  // called between two checks with a writer of the whole state (the engine's and the loop's),
+  // and once more at the end (`end` true); a run given `resume`, a stream positioned at such a
+  // state, loads it into the engine and goes on exactly as the saved run would have.
+  std::function<void(const std::function<void(std::ostream&)>& state, bool end)> checkpoint;
+  std::istream* resume = nullptr;
 };
 
 enum class RelaxStop { converged, step_limit };
@@ -43,19 +51,19 @@ RelaxResult relax(Engine& engine, const RelaxOptions& options);
 // Fixed particles keep their velocities (prescribed motion is not disturbed).
 struct ZeroVelocityRelaxOptions {
   long max_steps = 100000;
-  long check_interval = 50;   // steps between two values of the mean unbalanced force
-  double min_decrease = 0.01; // relative decrease that counts as progress
-  int patience = 5;           // checks in a row without progress that end the run
+  long check_interval = 50;    // steps between two values of the mean unbalanced force
+  double min_decrease = 0.01;  // relative decrease that counts as progress
+  int patience = 5;            // checks in a row without progress that end the run
   std::function<void(const Diagnostics&, double mean_unbalanced_force)> on_check;
 };
 
 struct ZeroVelocityRelaxResult {
   long steps = 0;
-  bool converged = false;              // stopped by the criterion, not by max_steps
-  double initial_unbalanced_force = 0; // <|F_i|> at the first check [N]
-  double final_unbalanced_force = 0;   // at the last check [N]
+  bool converged = false;               // stopped by the criterion, not by max_steps
+  double initial_unbalanced_force = 0;  // <|F_i|> at the first check [N]
+  double final_unbalanced_force = 0;    // at the last check [N]
   Diagnostics last;
-  std::vector<Diagnostics> history;    // one entry per check
+  std::vector<Diagnostics> history;      // one entry per check
   std::vector<double> unbalanced_force;  // <|F_i|> per check [N]
   std::string reason() const;
 };

@@ -16,9 +16,10 @@
 // The contact law runs over blocks of 64 listed pairs into per-component arrays (PairBlock):
 // no branch on whether a pair touches (its result is masked), so the loop vectorizes; the
 // forces are then added to the particles in a short scalar loop. packlab is compiled without
-// fused multiply-add contraction (-ffp-contract=off, CMakeLists.txt): a pair's force must not depend on whether it falls in
-// the vector body or the scalar remainder of that loop, which differ in where the compiler
-// fuses multiply-adds, and a pair's place in a block depends on the thread count.
+// fused multiply-add contraction (-ffp-contract=off, CMakeLists.txt): a pair's force must not depend on whether it
+// falls in the vector body or the scalar remainder of that loop, which differ in where the compiler fuses
+// multiply-adds, and a pair's place in a block depends on the thread count.
+#include <fmt/format.h>
 #include <omp.h>
 
 #include <algorithm>
@@ -26,7 +27,9 @@
 #include <climits>
 #include <cmath>
 #include <limits>
+#include <string>
 
+#include "packlab/core/error.hpp"
 #include "packlab/dem/engine.hpp"
 #include "packlab/dem/local_damping.hpp"
 
@@ -74,6 +77,10 @@ void Engine::partition_work() {
       if (std::max(bonds_.i[b], bonds_.j[b]) >= w.particle_end) w.crossing_bonds.push_back(q);
     }
     w.crossing_bond_results.resize(w.crossing_bonds.size());
+    // A bond breaks at most once per step and each is evaluated by one thread: with room for
+    // all of this range's bonds, recording a break never allocates, so nothing in the step's
+    // parallel region can throw (an exception there, between barriers, would abort).
+    w.breaks.reserve(static_cast<std::size_t>(bond_first_[w.particle_end] - bond_first_[w.particle_begin]));
   }
 }
 
@@ -647,6 +654,24 @@ Diagnostics Engine::step_measured() {
   if (t.contacts > 0 && t.free_particles > 0 && t.contact_force_sum > 0.0)
     d.unbalanced_force_ratio = (t.unbalanced_force_sum / static_cast<double>(t.free_particles)) /
                                (t.contact_force_sum / static_cast<double>(t.contacts));
+  // A run that turned non-finite stops at the first measured step after it, naming a particle,
+  // rather than writing NaN curves and failing later at an output (or not at all).
+  if (!std::isfinite(d.kinetic_energy) || !std::isfinite(d.strain_energy)) {
+    const auto& P = particles_;
+    std::size_t k = 0;
+    while (k < n && std::isfinite(norm2(P.position[k])) && std::isfinite(norm2(P.velocity[k])) &&
+           std::isfinite(norm2(P.force[k])))
+      ++k;
+    const std::string which =
+        k < n ? fmt::format("particle {} (position ({:g}, {:g}, {:g}), velocity ({:g}, {:g}, {:g}))",
+                            original_index_[k], P.position[k].x, P.position[k].y, P.position[k].z, P.velocity[k].x,
+                            P.velocity[k].y, P.velocity[k].z)
+              : std::string("the strain energy");
+    fail_input(fmt::format(
+        "step {}: the run became non-finite at {}: unstable; likely a time step too large for the stiffest "
+        "contact or bond (lower time_step_safety or time_step) or particles overlapping far beyond the contact law",
+        d.step, which));
+  }
   return d;
 }
 

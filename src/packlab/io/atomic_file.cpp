@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 #include <unistd.h>
 
+#include <exception>
 #include <fstream>
 #include <system_error>
 
@@ -10,8 +11,7 @@
 
 namespace packlab::io {
 
-void write_atomically(const std::filesystem::path& path,
-                      const std::function<void(std::ostream&)>& write) {
+void write_atomically(const std::filesystem::path& path, const std::function<void(std::ostream&)>& write) {
   const auto parent = path.has_parent_path() ? path.parent_path() : std::filesystem::path(".");
   if (!std::filesystem::is_directory(parent))
     fail_input(fmt::format("cannot write {}: folder {} does not exist", path.string(), parent.string()));
@@ -50,6 +50,18 @@ void ensure_directory(const std::filesystem::path& dir) {
   }
   std::filesystem::create_directories(dir, ec);
   if (ec) fail_input(fmt::format("cannot create output folder {}: {}", dir.string(), ec.message()));
+}
+
+OutputFolder::OutputFolder(std::filesystem::path dir) : dir_(std::move(dir)), exceptions_(std::uncaught_exceptions()) {
+  std::error_code ec;
+  created_ = !std::filesystem::exists(dir_, ec);
+  ensure_directory(dir_);
+}
+
+OutputFolder::~OutputFolder() {
+  if (!created_ || std::uncaught_exceptions() <= exceptions_) return;
+  std::error_code ec;
+  if (std::filesystem::is_empty(dir_, ec) && !ec) std::filesystem::remove(dir_, ec);
 }
 
 void check_writable_file(const std::filesystem::path& path) {

@@ -74,6 +74,7 @@ ConfigSchema shear_test_options(ShearTestRun& r) {
   ConfigSchema schema("test shear", "The oscillatory shear test (docs/shear.md).", "shear_test");
   add_oscillatory_shear_options(schema, r.test);
   schema.boolean("output.plots", r.plots, "Draw the PNG plots").command_only();
+  add_checkpoint_seconds(schema, r.checkpoint_seconds);
   return schema;
 }
 
@@ -183,8 +184,10 @@ void add_opal_materials(ConfigSchema& schema, mechanics::OpalMaterials& m) {
 
 }  // namespace
 
-ConfigSchema compression_test_options(mechanics::UniaxialCompressionSetup& s) {
-  ConfigSchema schema("test compress", "Uniaxial compression of a bonded model (docs/opal.md).", "compression_test");
+namespace {
+
+// The keys of the test, shared with its calibration.
+void add_compression_test_keys(ConfigSchema& schema, mechanics::UniaxialCompressionSetup& s) {
   add_opal_materials(schema, s.materials);
   schema
       .number("strain_rate", s.strain_rate,
@@ -198,6 +201,14 @@ ConfigSchema compression_test_options(mechanics::UniaxialCompressionSetup& s) {
                "Strains at which bond strains and particle stresses are recorded (Fig. 7, Table 2), each in "
                "(0, max_strain]");
   add_uniaxial_compression_options(schema, s.options);
+}
+
+}  // namespace
+
+ConfigSchema compression_test_options(mechanics::UniaxialCompressionSetup& s) {
+  ConfigSchema schema("test compress", "Uniaxial compression of a bonded model (docs/opal.md).", "compression_test");
+  add_compression_test_keys(schema, s);
+  add_checkpoint_seconds(schema, s.checkpoint_seconds);
   return schema;
 }
 
@@ -224,7 +235,7 @@ ConfigSchema compression_calibration_options(CompressionCalibrationRun& r) {
       .boolean("full_jacobian", r.full_jacobian,
                "Use every finite-difference derivative (default: E from E_b and strength from sigma_max only, as the "
                "paper)");
-  schema.append(compression_test_options(r.setup));
+  add_compression_test_keys(schema, r.setup);
   return schema;
 }
 

@@ -133,6 +133,7 @@ ConfigSchema relax_options(RelaxRun& r) {
       .range({1.0, ranges::inf, false, true})
       .integer("seed", r.seed, "Accepted for uniformity; relax draws no random numbers")
       .command_only();
+  add_checkpoint_seconds(schema, r.checkpoint_seconds);
   return schema;
 }
 

@@ -77,7 +77,8 @@ ConfigSchema engine_options(EngineSettings& s);  // the keywords of packlab.Engi
 // `packlab relax` / packlab.relax: the engine's options and the relaxation's.
 struct RelaxRun : EngineSettings {
   dem::RelaxOptions relax;
-  std::uint64_t seed = 1;  // accepted for uniformity; relax draws no random numbers
+  std::uint64_t seed = 1;           // accepted for uniformity; relax draws no random numbers
+  double checkpoint_seconds = 120;  // command line only (with --checkpoint DIR)
 };
 ConfigSchema relax_options(RelaxRun& r);
 
@@ -189,6 +190,7 @@ void add_oscillatory_shear_options(ConfigSchema& schema, mechanics::OscillatoryS
 struct ShearTestRun {
   mechanics::OscillatoryShearOptions test;
   bool plots = true;
+  double checkpoint_seconds = 120;  // command line only
 };
 ConfigSchema shear_test_options(ShearTestRun& r);
 
@@ -243,7 +245,7 @@ struct PoreSizeSettings {  // packlab.PoreSize
 void add_pore_size_options(ConfigSchema& schema, PoreSizeSettings& s);
 ConfigSchema pore_size_options(PoreSizeSettings& s);
 
-struct DohFitSettings {  // packlab.PoreSize.fit_doh
+struct DohFitSettings {           // packlab.PoreSize.fit_doh
   double r0 = 0.0;                // [m]; 0 = mean particle radius
   std::vector<double> fit_range;  // XMIN, XMAX of r/r0; empty = 0 to where P falls to fit_p_min
   double fit_p_min = 1e-3;

@@ -30,6 +30,16 @@ bool warned = false;  // say "no plots" once per process
 
 std::filesystem::path python_package_dir() {
   if (const char* env = std::getenv("PACKLAB_PYTHONPATH")) return env;
+  // An installed packlab (`cmake --install`, docs/install.md): PREFIX/bin/packlab finds the
+  // package in PREFIX/lib/packlab/python (the folder CMakeLists.txt installs it into), wherever
+  // the prefix was moved, and whether or not the sources it was built from still exist.
+  std::error_code ec;
+  const std::filesystem::path exe = std::filesystem::read_symlink("/proc/self/exe", ec);
+  if (!ec) {
+    const std::filesystem::path installed = exe.parent_path().parent_path() / "lib" / "packlab" / "python";
+    if (std::filesystem::exists(installed / "packlab" / "plot" / "__main__.py", ec)) return installed;
+  }
+  // The build tree: the sources' python/ folder.
   return PACKLAB_PYTHON_DIR;
 }
 
@@ -37,9 +47,9 @@ bool make_plot(const std::string& kind, const std::vector<std::string>& args, co
                const PlotOptions& options) {
   if (!options.enabled) return false;
   const char* python = std::getenv("PACKLAB_PYTHON");
-  std::string cmd = fmt::format("PYTHONPATH={}${{PYTHONPATH:+:$PYTHONPATH}} {} -m packlab.plot {}",
-                                quote(python_package_dir().string()), python ? quote(python) : "/usr/bin/python3",
-                                quote(kind));
+  std::string cmd =
+      fmt::format("PYTHONPATH={}${{PYTHONPATH:+:$PYTHONPATH}} {} -m packlab.plot {}",
+                  quote(python_package_dir().string()), python ? quote(python) : "/usr/bin/python3", quote(kind));
   for (const auto& a : args) {
     cmd.push_back(' ');
     cmd.append(quote(a));

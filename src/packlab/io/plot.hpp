@@ -17,7 +17,8 @@ struct PlotOptions {
 bool make_plot(const std::string& kind, const std::vector<std::string>& args, const std::filesystem::path& png,
                const PlotOptions& options = {});
 
-// The folder holding the `packlab` Python package (env PACKLAB_PYTHONPATH overrides).
+// The folder holding the `packlab` Python package: env PACKLAB_PYTHONPATH, else PREFIX/lib/
+// packlab/python beside an installed binary (PREFIX/bin/packlab), else the sources' python/.
 std::filesystem::path python_package_dir();
 
 }  // namespace packlab::io

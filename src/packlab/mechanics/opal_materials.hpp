@@ -49,6 +49,7 @@ struct UniaxialCompressionSetup {
   // Automatic rate: this strain per time an elastic wave needs to cross the sample,
   // H0 / c with c = sqrt(E_b / rho) of silica (DESIGN.md: quasi-static, shown rate-independent).
   double quasi_static = 1e-4;
+  double checkpoint_seconds = 120;  // `packlab test compress` only: seconds between checkpoints
   void finish(const Packing& model);
 };
 

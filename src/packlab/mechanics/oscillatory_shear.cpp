@@ -151,19 +151,31 @@ OscillatoryShearResult run_oscillatory_shear(const Packing& bonded, const Oscill
   require_periodic_bonded(bonded);
   const auto t0 = std::chrono::steady_clock::now();
   OscillatoryShearResult result;
-  if (options.relax) {
-    result.relaxed_packing = relax_bonded(bonded, options, &result.relax);
-    result.relaxed = true;
-    result.particle_steps += static_cast<double>(bonded.size()) * static_cast<double>(result.relax.steps);
+  const auto save = [&](std::ostream& out) { save_shear_progress(out, result); };
+  const bool checkpoints = options.checkpoint && options.solver != "static";
+  const std::vector<ShearOrientation> orientations = shear_orientations(options.orientations);
+  if (options.resume != nullptr && options.solver != "static") {
+    load_shear_progress(*options.resume, result);
+    if (result.runs.size() > orientations.size())
+      fail_input("checkpoint is damaged: more orientations than the test runs");
   } else {
-    result.relaxed_packing = bonded;
+    if (options.relax) {
+      result.relaxed_packing = relax_bonded(bonded, options, &result.relax);
+      result.relaxed = true;
+      result.particle_steps += static_cast<double>(bonded.size()) * static_cast<double>(result.relax.steps);
+    } else {
+      result.relaxed_packing = bonded;
+    }
+    if (checkpoints) options.checkpoint(save, false);
   }
-  for (const auto& o : shear_orientations(options.orientations)) {
-    result.runs.push_back(run_shear_orientation(result.relaxed_packing, o, options));
+  for (std::size_t k = result.runs.size(); k < orientations.size(); ++k) {
+    result.runs.push_back(run_shear_orientation(result.relaxed_packing, orientations[k], options));
     const ShearRun& r = result.runs.back();
     result.particle_steps +=
         static_cast<double>(r.structure_particles + r.plate_particles) * static_cast<double>(r.steps);
+    if (checkpoints) options.checkpoint(save, false);
   }
+  if (checkpoints) options.checkpoint(save, true);
   double sum = 0.0;
   for (const auto& r : result.runs) {
     sum += r.storage_modulus;

@@ -34,6 +34,8 @@
 #pragma once
 
 #include <functional>
+#include <istream>
+#include <ostream>
 #include <string>
 #include <vector>
 
@@ -90,6 +92,14 @@ struct OscillatoryShearOptions {
   std::string solver_backend = "auto";  // static: "auto", "cholmod" or "eigen"
   // Called now and then: stage ("relax", "z:x", ...), steps done and total of that stage.
   std::function<void(const std::string& stage, long done, long total)> progress;
+  // Resumable tests (`packlab test shear --resume`, cli/checkpoint.hpp): `checkpoint` is called
+  // after the relaxation and after each orientation with a writer of the progress
+  // (save_shear_progress), and once more at the end (`end` true); a test given `resume`, a
+  // stream positioned at such a state, goes on with the next orientation and gives the result
+  // of an uninterrupted test (an orientation that was interrupted is run again from its start).
+  // The static solver takes no checkpoints (it ignores both).
+  std::function<void(const std::function<void(std::ostream&)>& state, bool end)> checkpoint;
+  std::istream* resume = nullptr;
 };
 
 // Throws InputError naming the option that is out of range (the ranges of the option set
@@ -208,5 +218,10 @@ struct OscillatoryShearResult {
 
 // InputError when the packing is not periodic along all three axes or has no intact bond.
 OscillatoryShearResult run_oscillatory_shear(const Packing& bonded, const OscillatoryShearOptions& options);
+
+// The relaxed structure, its relaxation and the finished orientations of a test in progress,
+// exactly (oscillatory_shear_checkpoint.cpp); InputError when damaged.
+void save_shear_progress(std::ostream& out, const OscillatoryShearResult& result);
+void load_shear_progress(std::istream& in, OscillatoryShearResult& result);
 
 }  // namespace packlab::mechanics

@@ -8,6 +8,7 @@
 #include <chrono>
 #include <cmath>
 
+#include "packlab/core/binary_io.hpp"
 #include "packlab/core/error.hpp"
 #include "packlab/mechanics/row_columns.hpp"
 #include "packlab/mechanics/static_loading.hpp"
@@ -31,6 +32,36 @@ Columns curve_columns(const std::vector<UniaxialCompressionPoint>& curve) {
       t, "broken_bonds", curve, [](const P& p) { return p.broken_bonds; }, Column::Kind::integer);
   return t;
 }
+
+namespace {
+
+// The state written by run_uniaxial_compression's `save` (options.checkpoint).
+void load_compression_state(std::istream& in, dem::Engine& engine, bool& stopped, double& peak,
+                            UniaxialCompressionResult& result) {
+  engine.load_state(in);
+  std::uint8_t stop = 0;
+  std::uint64_t snapshots = 0;
+  binary::read(in, stop, "stop flag");
+  binary::read_string(in, result.stop_reason, "stop reason");
+  binary::read(in, peak, "peak stress");
+  binary::read(in, result.strain_at_peak, "strain at the peak");
+  binary::read_vector(in, result.curve, "curve");
+  binary::read(in, snapshots, "snapshot count");
+  if (stop > 1 || snapshots > (1U << 16)) fail_input("checkpoint is damaged: compression state");
+  stopped = stop == 1;
+  result.snapshots.resize(snapshots);
+  for (UniaxialCompressionSnapshot& s : result.snapshots) {
+    std::array<double, 3> values{};
+    binary::read(in, values, "snapshot");
+    s.requested_strain = values[0];
+    s.strain = values[1];
+    s.stress = values[2];
+    binary::read_vector(in, s.bond_strain, "snapshot bond strains");
+    binary::read_vector(in, s.particle_stress, "snapshot particle stresses");
+  }
+}
+
+}  // namespace
 
 UniaxialCompressionResult run_uniaxial_compression(const Packing& bonded_model,
                                                    const UniaxialCompressionOptions& options) {
@@ -83,7 +114,25 @@ UniaxialCompressionResult run_uniaxial_compression(const Packing& bonded_model,
   double peak = 0.0;
   result.stop_reason = "reached max_strain";
   const double t_start = engine.time();
-  while (engine.step_count() < total_steps) {
+  bool stopped = false;
+  const auto save = [&](std::ostream& out) {
+    engine.save_state(out);
+    binary::write(out, static_cast<std::uint8_t>(stopped));
+    binary::write_string(out, result.stop_reason);
+    binary::write(out, peak);
+    binary::write(out, result.strain_at_peak);
+    binary::write_vector(out, result.curve);
+    binary::write(out, static_cast<std::uint64_t>(result.snapshots.size()));
+    for (const UniaxialCompressionSnapshot& s : result.snapshots) {
+      binary::write(out, std::array<double, 3>{s.requested_strain, s.strain, s.stress});
+      binary::write_vector(out, s.bond_strain);
+      binary::write_vector(out, s.particle_stress);
+    }
+  };
+  if (options.resume != nullptr) load_compression_state(*options.resume, engine, stopped, peak, result);
+  next_snapshot = result.snapshots.size();
+  if (next_snapshot > pending.size()) fail_input("checkpoint is damaged: more snapshots than snapshot_strains");
+  while (!stopped && engine.step_count() < total_steps) {
     const long remaining = total_steps - engine.step_count();
     const long chunk = std::min(interval, remaining);
     if (chunk > 1) engine.run(chunk - 1);
@@ -116,9 +165,11 @@ UniaxialCompressionResult run_uniaxial_compression(const Packing& bonded_model,
     if (options.stop_drop > 0.0 && peak > 0.0 && p.strain > result.strain_at_peak &&
         p.stress < options.stop_drop * peak && d.broken_bonds > 0) {
       result.stop_reason = fmt::format("stress fell below {:g} x peak after the peak", options.stop_drop);
-      break;
+      stopped = true;
     }
+    if (options.checkpoint && !stopped) options.checkpoint(save, false);
   }
+  if (options.checkpoint) options.checkpoint(save, true);
   result.steps = engine.step_count();
   result.strength = peak;
   std::vector<double> strain, stress;

@@ -44,7 +44,9 @@
 #include <cstddef>
 #include <cstdint>
 #include <functional>
+#include <istream>
 #include <limits>
+#include <ostream>
 #include <string>
 #include <vector>
 
@@ -103,6 +105,13 @@ struct UniaxialCompressionOptions {
   long max_breaks = 0;                  // static: stop after this many bond breaks (0 = no limit)
   // Called at each curve point (progress); may be empty.
   std::function<void(const UniaxialCompressionPoint&)> on_point;
+  // Resumable runs of the dynamic solver (`packlab test compress --resume`, cli/checkpoint.hpp):
+  // `checkpoint` is called after each curve point with a writer of the whole state (the
+  // engine's, the curve, the peak, the snapshots) and once more at the end (`end` true); a run
+  // given `resume`, a stream positioned at such a state, goes on from it exactly as the saved
+  // run would have. The static solver takes no checkpoints (it ignores both).
+  std::function<void(const std::function<void(std::ostream&)>& state, bool end)> checkpoint;
+  std::istream* resume = nullptr;
   void validate() const;  // InputError naming key, value and allowed range
 };
 

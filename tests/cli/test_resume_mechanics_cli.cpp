@@ -1,0 +1,197 @@
+// --resume of the DEM commands: test compress, test shear (dynamic solver) and relax
+// (--checkpoint DIR). Each run is killed with SIGKILL right after a chosen checkpoint (the
+// PACKLAB_KILL_AFTER_CHECKPOINTS hook of cli/checkpoint.hpp: the same place on any machine),
+// its resume killed again, and the second resume run to the end: every result file equals the
+// one of an uninterrupted run bit for bit (report.json up to its wall-clock times and thread count). A damaged
+// checkpoint and a changed output are refused with exit code 2.
+#include <fmt/format.h>
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <set>
+#include <sstream>
+#include <string>
+
+#include "cli_runner.hpp"
+
+namespace {
+
+using packlab::test::CliResult;
+using packlab::test::run_packlab;
+using packlab::test::TempDir;
+namespace fs = std::filesystem;
+
+std::string read_bytes(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+// `packlab ARGS` killed by SIGKILL right after its `checkpoints`-th checkpoint.
+CliResult run_killed(const std::string& args, int checkpoints) {
+  const std::string cmd =
+      fmt::format("PACKLAB_KILL_AFTER_CHECKPOINTS={} {} {} 2>&1", checkpoints, PACKLAB_BINARY, args);
+  FILE* pipe = ::popen(cmd.c_str(), "r");
+  std::string output;
+  char buffer[4096];
+  while (pipe && std::fgets(buffer, sizeof buffer, pipe)) output += buffer;
+  const int status = pipe ? ::pclose(pipe) : -1;
+  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, output};
+}
+
+// The report without what may differ between runs of the same result: wall-clock times (every
+// key that names seconds) and the thread count (the resumes here run with another one).
+nlohmann::json without_run_environment(nlohmann::json j) {
+  if (j.is_object()) {
+    nlohmann::json out = nlohmann::json::object();
+    for (auto it = j.begin(); it != j.end(); ++it)
+      if (it.key().find("second") == std::string::npos && it.key() != "threads")
+        out[it.key()] = without_run_environment(it.value());
+    return out;
+  }
+  if (j.is_array())
+    for (auto& v : j) v = without_run_environment(v);
+  return j;
+}
+
+// Every file of `expected` (a folder) but the checkpoint is in `actual` with the same bytes.
+void expect_same_results(const fs::path& expected, const fs::path& actual) {
+  std::set<std::string> names;
+  for (const auto& e : fs::directory_iterator(expected)) names.insert(e.path().filename().string());
+  EXPECT_GT(names.size(), 2u);
+  for (const std::string& name : names) {
+    if (name == "checkpoint.bin") continue;
+    ASSERT_TRUE(fs::exists(actual / name)) << name;
+    if (name == "report.json") {
+      EXPECT_EQ(without_run_environment(nlohmann::json::parse(read_bytes(expected / name))),
+                without_run_environment(nlohmann::json::parse(read_bytes(actual / name))));
+      continue;
+    }
+    EXPECT_TRUE(read_bytes(expected / name) == read_bytes(actual / name)) << name << " differs";
+  }
+}
+
+// Runs `command IN ARGS --out DIR` straight, then again killed after `first` checkpoints,
+// resumed and killed after `second` more, resumed to the end; compares the two folders. The
+// runs use the same folder name (outputs may name it).
+void expect_resumed_equals_straight(const TempDir& dir, const std::string& command, const std::string& args, int first,
+                                    int second) {
+  const std::string out = dir.file("run");
+  const std::string run_args = command + " " + args + " --checkpoint-seconds 1e-9 --quiet --no-plots --out " + out;
+  const auto straight = run_packlab(run_args);
+  ASSERT_EQ(straight.exit_code, 0) << straight.output;
+  fs::rename(out, dir.file("straight"));
+  const auto killed = run_killed(run_args, first);
+  ASSERT_EQ(killed.exit_code, 128 + 9) << "not killed at checkpoint " << first << ": " << killed.output;
+  const std::string resume = command + " --resume " + out + " --quiet --no-plots";
+  const auto killed_again = run_killed(resume, second);
+  ASSERT_EQ(killed_again.exit_code, 128 + 9) << killed_again.output;
+  const auto resumed = run_packlab(resume + " --threads 2");  // the result does not depend on it
+  ASSERT_EQ(resumed.exit_code, 0) << resumed.output;
+  expect_same_results(dir.path() / "straight", out);
+}
+
+std::string bonded_lattice(const TempDir& dir, const std::string& lattice_args, const std::string& bond_args) {
+  const auto g = run_packlab("generate lattice " + lattice_args + " --quiet --out " + dir.file("lattice.xyz"));
+  EXPECT_EQ(g.exit_code, 0) << g.output;
+  const auto b = run_packlab("bond " + dir.file("lattice.xyz") + " " + bond_args + " --out " + dir.file("model.vtu"));
+  EXPECT_EQ(b.exit_code, 0) << b.output;
+  return dir.file("model.vtu");
+}
+
+}  // namespace
+
+TEST(ResumeMechanicsCli, TestCompressKilledTwiceAndResumedEqualsUninterruptedRun) {
+  TempDir dir("resume-compress");
+  const std::string model =
+      bonded_lattice(dir, "--type sc --cells 3 3 6 --radius 7.5e-9", "--model elastic --cutoff-ratio 1.75");
+  expect_resumed_equals_straight(dir, "test compress",
+                                 model +
+                                     " --bond-youngs-modulus 6.53e9 --bond-poisson-ratio 0.17 --bond-strength 94.3e6"
+                                     " --bond-compressive-breakage --strain-rate 4e6 --max-strain 0.03"
+                                     " --snapshot-strains 0.005,0.02 --samples 200 --threads 1",
+                                 60, 70);
+}
+
+TEST(ResumeMechanicsCli, TestShearKilledTwiceAndResumedEqualsUninterruptedRun) {
+  TempDir dir("resume-shear");
+  const std::string model =
+      bonded_lattice(dir, "--type sc --cells 4 4 4 --radius 0.25e-6", "--model contact --eps 0.01");
+  // Checkpoints: 1 after the relaxation, 2 after z:x, 3 after z:y, then the end.
+  expect_resumed_equals_straight(dir, "test shear",
+                                 model +
+                                     " --stiffness-rule contact --normal-stiffness 100 --shear-stiffness 10"
+                                     " --cycles 2 --steps-per-cycle 2000 --regions 1 --orientations z --threads 1",
+                                 1, 1);
+}
+
+TEST(ResumeMechanicsCli, RelaxKilledTwiceAndResumedEqualsUninterruptedRun) {
+  TempDir dir("resume-relax");
+  const auto g = run_packlab("generate random --particles 300 --radius 1e-6 --phi 0.6 --seed 2 --quiet --out " +
+                             dir.file("start.xyz"));
+  ASSERT_EQ(g.exit_code, 0) << g.output;
+  const std::string args = dir.file("start.xyz") + " " + dir.file("out/relaxed.vtu") +
+                           " --normal-stiffness 1000 --shear-stiffness 10 --friction 0.1 --density 3690"
+                           " --stiffness-rule contact --steps 3000 --tolerance 0 --check-interval 50 --threads 1"
+                           " --log " +
+                           dir.file("out/relax.csv") + " --checkpoint-seconds 1e-9 --quiet --no-plots --checkpoint ";
+  fs::create_directories(dir.path() / "out");
+  const auto straight = run_packlab("relax " + args + dir.file("straight-checkpoint"));
+  ASSERT_EQ(straight.exit_code, 0) << straight.output;
+  fs::rename(dir.path() / "out", dir.path() / "straight");
+  fs::create_directories(dir.path() / "out");
+  const auto killed = run_killed("relax " + args + dir.file("checkpoint"), 17);
+  ASSERT_EQ(killed.exit_code, 128 + 9) << killed.output;
+  EXPECT_FALSE(fs::exists(dir.file("out/relaxed.vtu")));
+  const auto killed_again = run_killed("relax --resume " + dir.file("checkpoint") + " --quiet --no-plots", 11);
+  ASSERT_EQ(killed_again.exit_code, 128 + 9) << killed_again.output;
+  const auto resumed = run_packlab("relax --resume " + dir.file("checkpoint") + " --threads 2 --quiet --no-plots");
+  ASSERT_EQ(resumed.exit_code, 0) << resumed.output;
+  for (const char* f : {"relaxed.vtu", "relax.csv"})
+    EXPECT_TRUE(read_bytes(dir.path() / "straight" / f) == read_bytes(dir.path() / "out" / f)) << f << " differs";
+
+  // An output file or a log given with --resume, a damaged checkpoint: exit code 2.
+  const auto with_out = run_packlab("relax --resume " + dir.file("checkpoint") + " " + dir.file("x.vtu"));
+  EXPECT_EQ(with_out.exit_code, 2) << with_out.output;
+  EXPECT_NE(with_out.output.find("cannot be combined with --resume"), std::string::npos) << with_out.output;
+  const fs::path checkpoint = dir.path() / "checkpoint" / "checkpoint.bin";
+  std::string bytes = read_bytes(checkpoint);
+  ASSERT_GT(bytes.size(), 1000u);
+  bytes[bytes.size() / 2] = static_cast<char>(bytes[bytes.size() / 2] ^ 0x10);
+  std::ofstream(checkpoint, std::ios::binary) << bytes;
+  const auto damaged = run_packlab("relax --resume " + dir.file("checkpoint") + " --quiet");
+  EXPECT_EQ(damaged.exit_code, 2) << damaged.output;
+  EXPECT_NE(damaged.output.find("checkpoint.bin"), std::string::npos) << damaged.output;
+}
+
+TEST(ResumeMechanicsCli, DamagedCompressionCheckpointIsRefused) {
+  TempDir dir("resume-compress-bad");
+  const std::string model =
+      bonded_lattice(dir, "--type sc --cells 3 3 6 --radius 7.5e-9", "--model elastic --cutoff-ratio 1.75");
+  const auto r = run_packlab("test compress " + model +
+                             " --strain-rate 4e6 --max-strain 0.005 --quiet --no-plots --out " + dir.file("c"));
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const fs::path checkpoint = dir.path() / "c" / "checkpoint.bin";
+  const std::string bytes = read_bytes(checkpoint);
+  ASSERT_GT(bytes.size(), 1000u);
+  for (std::size_t k : {std::size_t{5}, bytes.size() / 3, bytes.size() - 2}) {
+    std::string damaged = bytes;
+    damaged[k] = static_cast<char>(damaged[k] ^ 0x01);
+    std::ofstream(checkpoint, std::ios::binary) << damaged;
+    const auto resumed = run_packlab("test compress --resume " + dir.file("c") + " --quiet --no-plots");
+    EXPECT_EQ(resumed.exit_code, 2) << "byte " << k << ": " << resumed.output;
+    EXPECT_NE(resumed.output.find("checkpoint.bin"), std::string::npos) << resumed.output;
+  }
+  // The static solver takes no checkpoint: nothing to resume, said so.
+  const auto s = run_packlab("test compress " + model +
+                             " --solver static --max-strain 0.005 --quiet --no-plots --out " + dir.file("s"));
+  ASSERT_EQ(s.exit_code, 0) << s.output;
+  EXPECT_FALSE(fs::exists(dir.path() / "s" / "checkpoint.bin"));
+  const auto help = run_packlab("test compress --help");
+  EXPECT_NE(help.output.find("--solver static takes none"), std::string::npos) << help.output;
+}
