@@ -64,7 +64,13 @@ int compress(int argc, char** argv) {
   o.max_breaks = max_breaks < 0 ? 1 : max_breaks;
   if (max_breaks < 0) o.max_strain = 1e-6;  // modulus only: no bond reaches its strength
   long points = 0;
-  o.on_point = [&](const mechanics::UniaxialCompressionPoint&) { ++points; };
+  const auto t_run = std::chrono::steady_clock::now();
+  o.on_point = [&](const mechanics::UniaxialCompressionPoint& p) {
+    // Progress on stderr (unbuffered): a long analysis shows where it is.
+    if (++points % 200 == 0)
+      fmt::print(stderr, "{} breaks, strain {:.5g}, stress {:.5g} Pa, {:.1f} s\n", points - 1, p.strain, p.stress,
+                 since(t_run));
+  };
   const auto t0 = std::chrono::steady_clock::now();
   const mechanics::UniaxialCompressionResult r = mechanics::run_uniaxial_compression(model, o);
   const double seconds = since(t0);
