@@ -42,6 +42,9 @@ struct Box {
     for (int a = 0; a < 3; ++a) {
       if (!periodic[a]) continue;
       const double n = std::floor((p[a] - lo[a]) / length[a]);
+      // A run gone non-finite (the engine stops it at its next measured step) or flung beyond
+      // int range must not reach the integer cast below (undefined behaviour).
+      if (!(std::abs(n) < 1e9)) continue;
       p[a] -= n * length[a];
       // floor can land exactly on hi after round-off; keep the half-open interval.
       if (p[a] >= lo[a] + length[a]) p[a] -= length[a];

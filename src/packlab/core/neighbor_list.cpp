@@ -22,8 +22,10 @@ struct CellGrid {
   int index(const Vec3& p) const {
     int c[3];
     for (int a = 0; a < 3; ++a) {
-      int k = static_cast<int>(std::floor((p[a] - lo[a]) / size[a]));
-      c[a] = std::clamp(k, 0, count[a] - 1);  // open axes: particles outside go to edge cells
+      // Open axes: particles outside go to edge cells; a non-finite coordinate (a run gone
+      // non-finite, stopped at its next measured step) to cell 0, never through an int cast.
+      const double k = std::floor((p[a] - lo[a]) / size[a]);
+      c[a] = k >= 0.0 ? (k < count[a] - 1 ? static_cast<int>(k) : count[a] - 1) : 0;
     }
     return c[0] + count[0] * (c[1] + count[1] * c[2]);
   }
@@ -46,7 +48,8 @@ CellGrid make_grid(const Box& box, const std::vector<Vec3>& position, double ran
       extent = std::max(mx - mn, range);
     }
     g.lo[a] = lo;
-    g.count[a] = std::max(1, static_cast<int>(std::floor(extent / range)));
+    const double cells = std::floor(extent / range);  // NaN or huge for a run gone non-finite
+    g.count[a] = cells >= 1.0 ? (cells < 1048576.0 ? static_cast<int>(cells) : 1048576) : 1;
   }
   // Keep the number of cells proportional to the particle count (sparse, huge boxes).
   const double max_cells = 8.0 * static_cast<double>(n) + 64.0;
