@@ -9,6 +9,7 @@
 #include <sys/wait.h>
 
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -34,14 +35,11 @@ std::string read_bytes(const fs::path& path) {
 
 // `packlab ARGS` killed by SIGKILL right after its `checkpoints`-th checkpoint.
 CliResult run_killed(const std::string& args, int checkpoints) {
-  const std::string cmd =
-      fmt::format("PACKLAB_KILL_AFTER_CHECKPOINTS={} {} {} 2>&1", checkpoints, PACKLAB_BINARY, args);
-  FILE* pipe = ::popen(cmd.c_str(), "r");
-  std::string output;
-  char buffer[4096];
-  while (pipe && std::fgets(buffer, sizeof buffer, pipe)) output += buffer;
-  const int status = pipe ? ::pclose(pipe) : -1;
-  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, output};
+  // The child inherits the environment: the hook is set around run_packlab only.
+  ::setenv("PACKLAB_KILL_AFTER_CHECKPOINTS", std::to_string(checkpoints).c_str(), 1);
+  CliResult result = run_packlab(args);
+  ::unsetenv("PACKLAB_KILL_AFTER_CHECKPOINTS");
+  return result;
 }
 
 // The report without what may differ between runs of the same result: wall-clock times (every
