@@ -13,6 +13,7 @@
 #include "packlab/generate/bonding.hpp"
 #include "packlab/io/packing_io.hpp"
 #include "packlab/mechanics/oscillatory_shear.hpp"
+#include "shear_case.hpp"
 
 using namespace packlab;
 
@@ -21,12 +22,7 @@ int main(int argc, char** argv) {
   const int threads = argc > 2 ? std::atoi(argv[2]) : 1;
   const long steps_per_cycle = argc > 3 ? std::atol(argv[3]) : 10000;
   const int cycles = argc > 4 ? std::atoi(argv[4]) : 10;
-  Packing packing = io::read_packing(file);
-  if (packing.bonds.empty()) {
-    generate::BondingOptions bo;
-    bo.cutoff_ratio = 1.01;
-    generate::add_bonds(packing, bo);
-  }
+  Packing packing = bench::shear_case(file);
   mechanics::OscillatoryShearOptions o;
   o.threads = threads;
   o.steps_per_cycle = steps_per_cycle;
@@ -45,8 +41,7 @@ int main(int argc, char** argv) {
   fmt::print("packlab threads={} relax: {} steps {:.2f} s ({})\n", threads, relax.steps, relax_s, relax.reason());
   fmt::print("packlab shear G'={:.4g} Pa phase={:.3g} rad settle_steps={} loading_steps={} dt={:.4g} s\n",
              run.storage_modulus, run.phase_angle, run.settle.steps, run.steps - run.settle.steps, run.time_step);
-  fmt::print("packlab shear N={} structure={} bonds={} steps={} wall_s={:.3f} pts_per_s={:.4g}\n",
-             static_cast<long>(n), run.structure_particles, run.bonds, run.steps, wall,
-             n * static_cast<double>(run.steps) / wall);
+  fmt::print("packlab shear N={} structure={} bonds={} steps={} wall_s={:.3f} pts_per_s={:.4g}\n", static_cast<long>(n),
+             run.structure_particles, run.bonds, run.steps, wall, n * static_cast<double>(run.steps) / wall);
   return 0;
 }

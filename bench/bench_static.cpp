@@ -36,6 +36,7 @@
 #include "packlab/mechanics/opal_materials.hpp"
 #include "packlab/mechanics/static_loading.hpp"
 #include "packlab/mechanics/uniaxial_compression.hpp"
+#include "shear_case.hpp"
 
 using namespace packlab;
 using namespace packlab::bench;
@@ -103,12 +104,7 @@ int shear(int argc, char** argv) {
   const int threads = argc > 2 ? std::atoi(argv[2]) : 1;
   const std::string file = argc > 3 ? argv[3] : "examples/shear/data/vem_ns8000_nv2000.xyz";
   const std::string backend = argc > 4 ? argv[4] : "auto";
-  Packing packing = io::read_packing(file);
-  if (packing.bonds.empty()) {
-    generate::BondingOptions bo;
-    bo.cutoff_ratio = 1.01;
-    generate::add_bonds(packing, bo);
-  }
+  Packing packing = shear_case(file);
   mechanics::OscillatoryShearOptions o;
   o.threads = threads;
   o.solver = "static";
