@@ -1,13 +1,14 @@
-// --resume of the DEM commands: test compress, test shear (dynamic solver) and relax
-// (--checkpoint DIR). Each run is killed with SIGKILL right after a chosen checkpoint (the
-// PACKLAB_KILL_AFTER_CHECKPOINTS hook of cli/checkpoint.hpp: the same place on any machine),
-// its resume killed again, and the second resume run to the end: every result file equals the
-// one of an uninterrupted run bit for bit (report.json up to its wall-clock times and thread count). A damaged
-// checkpoint and a changed output are refused with exit code 2.
+// --resume of the DEM commands: test compress, test shear (dynamic solver), relax
+// (--checkpoint DIR), calibrate compress and calibrate shear. Each run is killed with SIGKILL right after a chosen
+// checkpoint (the PACKLAB_KILL_AFTER_CHECKPOINTS hook of cli/checkpoint.hpp: the same place on any machine), its resume
+// killed again, and the second resume run to the end: every result file equals the one of an uninterrupted run bit for
+// bit (report.json up to its wall-clock times and thread count). A damaged checkpoint and a changed output are refused
+// with exit code 2.
 #include <fmt/format.h>
 #include <gtest/gtest.h>
 #include <sys/wait.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -57,15 +58,17 @@ nlohmann::json without_run_environment(nlohmann::json j) {
   return j;
 }
 
-// Every file of `expected` (a folder) but the checkpoint is in `actual` with the same bytes.
+// Every file of `expected` (a folder, with its subfolders) but the checkpoint is in `actual`
+// with the same bytes.
 void expect_same_results(const fs::path& expected, const fs::path& actual) {
   std::set<std::string> names;
-  for (const auto& e : fs::directory_iterator(expected)) names.insert(e.path().filename().string());
+  for (const auto& e : fs::recursive_directory_iterator(expected))
+    if (e.is_regular_file()) names.insert(fs::relative(e.path(), expected).string());
   EXPECT_GT(names.size(), 2u);
   for (const std::string& name : names) {
     if (name == "checkpoint.bin") continue;
     ASSERT_TRUE(fs::exists(actual / name)) << name;
-    if (name == "report.json") {
+    if (fs::path(name).filename() == "report.json") {
       EXPECT_EQ(without_run_environment(nlohmann::json::parse(read_bytes(expected / name))),
                 without_run_environment(nlohmann::json::parse(read_bytes(actual / name))));
       continue;
@@ -78,15 +81,16 @@ void expect_same_results(const fs::path& expected, const fs::path& actual) {
 // resumed and killed after `second` more, resumed to the end; compares the two folders. The
 // runs use the same folder name (outputs may name it).
 void expect_resumed_equals_straight(const TempDir& dir, const std::string& command, const std::string& args, int first,
-                                    int second) {
+                                    int second, bool plots = true) {
   const std::string out = dir.file("run");
-  const std::string run_args = command + " " + args + " --checkpoint-seconds 1e-9 --quiet --no-plots --out " + out;
+  const std::string no_plots = plots ? " --no-plots" : "";  // a command that makes plots
+  const std::string run_args = command + " " + args + " --checkpoint-seconds 1e-9 --quiet" + no_plots + " --out " + out;
   const auto straight = run_packlab(run_args);
   ASSERT_EQ(straight.exit_code, 0) << straight.output;
   fs::rename(out, dir.file("straight"));
   const auto killed = run_killed(run_args, first);
   ASSERT_EQ(killed.exit_code, 128 + 9) << "not killed at checkpoint " << first << ": " << killed.output;
-  const std::string resume = command + " --resume " + out + " --quiet --no-plots";
+  const std::string resume = command + " --resume " + out + " --quiet" + no_plots;
   const auto killed_again = run_killed(resume, second);
   ASSERT_EQ(killed_again.exit_code, 128 + 9) << killed_again.output;
   const auto resumed = run_packlab(resume + " --threads 2");  // the result does not depend on it
@@ -165,6 +169,37 @@ TEST(ResumeMechanicsCli, RelaxKilledTwiceAndResumedEqualsUninterruptedRun) {
   const auto damaged = run_packlab("relax --resume " + dir.file("checkpoint") + " --quiet");
   EXPECT_EQ(damaged.exit_code, 2) << damaged.output;
   EXPECT_NE(damaged.output.find("checkpoint.bin"), std::string::npos) << damaged.output;
+}
+
+TEST(ResumeMechanicsCli, CalibrateCompressKilledTwiceAndResumedEqualsUninterruptedRun) {
+  // Seven simulations of ~200 checkpoints each (one per curve point, --checkpoint-seconds 1e-9)
+  // and one after each: killed within the second simulation, then within the fourth; the
+  // resumed runs replay the finished simulations and go on with the running one from its state.
+  TempDir dir("resume-calibrate-compress");
+  const std::string model =
+      bonded_lattice(dir, "--type sc --cells 3 3 6 --radius 7.5e-9", "--model elastic --cutoff-ratio 1.75");
+  expect_resumed_equals_straight(dir, "calibrate compress",
+                                 model +
+                                     " --bond-youngs-modulus 6.53e9 --bond-poisson-ratio 0.17 --bond-strength 94.3e6"
+                                     " --bond-compressive-breakage --strain-rate 4e6 --max-strain 0.03 --samples 200"
+                                     " --target-youngs-modulus 25e9 --target-strength 540e6 --threads 1",
+                                 250, 500);
+  const auto csv = read_bytes(dir.path() / "run" / "calibration.csv");
+  EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 8) << csv;  // a header and seven simulations
+}
+
+TEST(ResumeMechanicsCli, CalibrateShearKilledTwiceAndResumedEqualsUninterruptedRun) {
+  // Three simulations (start, finite difference, Newton step: G' is linear in k_n), two
+  // orientations each with a checkpoint after each orientation and after each simulation.
+  TempDir dir("resume-calibrate-shear");
+  const std::string model =
+      bonded_lattice(dir, "--type sc --cells 4 4 4 --radius 0.25e-6", "--model contact --eps 0.01");
+  expect_resumed_equals_straight(dir, "calibrate shear",
+                                 model +
+                                     " --target-storage-modulus 2e7 --stiffness-rule contact --normal-stiffness 100"
+                                     " --shear-stiffness 10 --cycles 1 --steps-per-cycle 2000 --regions 1"
+                                     " --orientations z --threads 1",
+                                 2, 3, false);
 }
 
 TEST(ResumeMechanicsCli, DamagedCompressionCheckpointIsRefused) {

@@ -1,6 +1,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <sstream>
 
 #include "packlab/core/error.hpp"
 #include "packlab/mechanics/calibration.hpp"
@@ -55,4 +56,51 @@ TEST(Calibration, StopsAtIterationLimitAndSaysSo) {
   EXPECT_FALSE(result.converged);
   EXPECT_EQ(result.iterations, 4);
   EXPECT_NE(result.reason().find("not converged"), std::string::npos);
+}
+
+TEST(Calibration, ResumedRunReplaysTheFinishedEvaluationsAndSimulatesOnlyTheRest) {
+  // A straight run records its evaluations; a second run given the first three replays them
+  // (no call) and simulates the rest: the same iterates and result, bit for bit.
+  auto response = [](const std::vector<double>& p) {
+    return std::vector<double>{0.3 * std::pow(p[0], 1.1) + 0.01 * p[1], 0.4 * std::pow(p[1], 0.9) + 1e-3 * p[0]};
+  };
+  CalibrationOptions options;
+  options.tolerance = 1e-4;
+  std::vector<CalibrationStep> recorded;
+  CalibrationProgress straight;
+  straight.on_evaluation = [&](const std::vector<CalibrationStep>& so_far) { recorded = so_far; };
+  const CalibrationResult a = calibrate(response, {1.0e3, 50.0}, {2.0e3, 60.0}, options, &straight);
+  ASSERT_TRUE(a.converged);
+  ASSERT_EQ(recorded.size(), a.history.size());
+  ASSERT_GT(recorded.size(), 4u);
+
+  int calls = 0, reported = 0;
+  CalibrationProgress resumed;
+  resumed.done.assign(recorded.begin(), recorded.begin() + 3);
+  resumed.on_evaluation = [&](const std::vector<CalibrationStep>&) { ++reported; };
+  auto counted = [&](const std::vector<double>& p) {
+    ++calls;
+    return response(p);
+  };
+  const CalibrationResult b = calibrate(counted, {1.0e3, 50.0}, {2.0e3, 60.0}, options, &resumed);
+  EXPECT_EQ(calls, static_cast<int>(recorded.size()) - 3);
+  EXPECT_EQ(reported, calls);  // checkpoints after new evaluations only
+  EXPECT_EQ(b.parameters, a.parameters);
+  EXPECT_EQ(b.responses, a.responses);
+  EXPECT_EQ(b.evaluations, a.evaluations);
+
+  // A checkpoint of another run (other start parameters) is refused, not silently mixed in.
+  CalibrationProgress other;
+  other.done.assign(recorded.begin(), recorded.begin() + 1);
+  EXPECT_THROW(calibrate(response, {1.1e3, 50.0}, {2.0e3, 60.0}, options, &other), InputError);
+}
+
+TEST(Calibration, RunningSimulationStateIsHandedOutOnceAndOnlyForItsParameters) {
+  std::istringstream state("saved");
+  CalibrationProgress progress;
+  progress.running = {1.0, 2.0};
+  progress.running_state = &state;
+  EXPECT_EQ(progress.take_resume({1.0, 2.5}), nullptr);
+  EXPECT_EQ(progress.take_resume({1.0, 2.0}), &state);
+  EXPECT_EQ(progress.take_resume({1.0, 2.0}), nullptr);
 }

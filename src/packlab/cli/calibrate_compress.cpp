@@ -8,6 +8,10 @@
 //    and the strength ratio E_macro / strength (the paper: 3.35 and ~35).
 // Writes DIR/report.json, DIR/calibration.csv and the compression outputs of the final
 // parameters in DIR/final/.
+// packlab calibrate compress --resume DIR [--threads T]
+// DIR/checkpoint.bin is written after every simulation and every --checkpoint-seconds within
+// one (dynamic solver); --resume DIR replays the finished simulations, goes on with the one
+// that was running and ends with the same files as an uninterrupted run.
 #include <fmt/format.h>
 
 #include <cstdio>
@@ -15,6 +19,7 @@
 #include <functional>
 #include <memory>
 
+#include "packlab/cli/checkpoint.hpp"
 #include "packlab/cli/commands.hpp"
 #include "packlab/cli/options.hpp"
 #include "packlab/cli/uniaxial_compression_output.hpp"
@@ -33,8 +38,9 @@ void add_calibrate_compress(CLI::App& calibrate) {
   add_option_command(
       calibrate, "compress",
       "Calibrate bond Young's modulus and strength to a target (eq. 18-19), or the bulk factor K_E (eq. 20)",
-      io::compression_calibration_options, {.input = "Bonded model (.vtu)", .output = "Output folder", .plots = true},
-      [](const OptionCommand<io::CompressionCalibrationRun>& command) {
+      io::compression_calibration_options,
+      {.input = "Bonded model (.vtu)", .output = "Output folder", .plots = true, .resumable = true},
+      [](OptionCommand<io::CompressionCalibrationRun>& command) {
         io::CompressionCalibrationRun run = command.settings;
         const Packing model = io::read_packing(command.in);
         mechanics::UniaxialCompressionSetup& s = run.setup;
@@ -49,7 +55,19 @@ void add_calibrate_compress(CLI::App& calibrate) {
         const io::OutputFolder folder(dir);  // removed again when the model is refused
         nlohmann::json report = io::report_header("calibrate compress");
         report["input"] = command.in;
+        CheckpointWriter checkpoint(dir, command.flags->schema(), command.in, s.checkpoint_seconds);
+        mechanics::CalibrationProgress progress =
+            calibration_progress(checkpoint, command.resumed ? &*command.resumed : nullptr);
+        if (!command.quiet && !progress.done.empty())
+          fmt::print("resumed: {} finished simulations replayed from {}\n", progress.done.size(),
+                     checkpoint_path(dir).string());
         if (run.bulk_factor) {
+          // One simulation: resumable within it (the dynamic solver's checkpoints).
+          const std::vector<double> parameters{s.materials.silica_youngs_modulus, s.materials.silica_strength};
+          s.options.resume = progress.take_resume(parameters);
+          s.options.checkpoint = [&](const std::function<void(std::ostream&)>& state, bool end) {
+            if (!end) progress.checkpoint(parameters, state);
+          };
           const mechanics::BulkFactorResult b = mechanics::compression_bulk_factor(model, s);
           const mechanics::UniaxialCompressionResult& r = b.run;
           write_uniaxial_compression_outputs(r, s.options, dir / "final", !command.no_plots, false);
@@ -72,7 +90,7 @@ void add_calibrate_compress(CLI::App& calibrate) {
           std::fflush(stdout);
         };
         const mechanics::CompressionCalibrationResult result = mechanics::calibrate_compression(
-            model, s, run.target_youngs_modulus, run.target_strength, run.calibration, on_run);
+            model, s, run.target_youngs_modulus, run.target_strength, run.calibration, on_run, &progress);
         const mechanics::CalibrationResult& c = result.calibration;
         const Columns history = mechanics::calibration_history_columns(c);
         io::write_text_atomically(dir / "calibration.csv", io::to_csv(history));

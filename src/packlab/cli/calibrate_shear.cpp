@@ -3,6 +3,10 @@
 // the mean storage modulus G' of the structure matches the target (doh-elastic-properties §3.1:
 // k_n was calibrated in 50-150 N/m); Newton with a finite-difference derivative
 // (mechanics::calibrate). Writes DIR/calibration.csv (every evaluation) and DIR/report.json.
+// packlab calibrate shear --resume DIR [--threads T]: DIR/checkpoint.bin is written after every
+// simulation and every --checkpoint-seconds within one (dynamic solver); the resumed run relaxes
+// the structure again (deterministic), replays the finished simulations and goes on with the
+// one that was running, ending with the same files as an uninterrupted run.
 #include <fmt/format.h>
 
 #include <cmath>
@@ -11,6 +15,7 @@
 #include <memory>
 #include <sstream>
 
+#include "packlab/cli/checkpoint.hpp"
 #include "packlab/cli/commands.hpp"
 #include "packlab/cli/options.hpp"
 #include "packlab/core/error.hpp"
@@ -25,8 +30,9 @@ namespace packlab::cli {
 void add_calibrate_shear(CLI::App& calibrate) {
   add_option_command(
       calibrate, "shear", "Calibrate the particle normal stiffness k_n so that the storage modulus G' matches a target",
-      io::shear_calibration_options, {.input = "Bonded model (a file with bonds)", .output = "Output folder"},
-      [](const OptionCommand<io::ShearCalibrationRun>& c) {
+      io::shear_calibration_options,
+      {.input = "Bonded model (a file with bonds)", .output = "Output folder", .resumable = true},
+      [](OptionCommand<io::ShearCalibrationRun>& c) {
         // The target is required: its default 0 is outside its range, so the range check stopped it.
         const io::ShearCalibrationRun& run = c.settings;
         const mechanics::OscillatoryShearOptions& options = run.test;
@@ -34,8 +40,14 @@ void add_calibrate_shear(CLI::App& calibrate) {
         const Packing packing = io::read_packing(c.in);
         const std::filesystem::path dir = c.out;
         const io::OutputFolder folder(dir);  // removed again when the model is refused
-        const auto result = mechanics::calibrate_normal_stiffness(packing, run.target_storage_modulus, options,
-                                                                  run.tolerance, static_cast<int>(run.max_iterations));
+        CheckpointWriter checkpoint(dir, c.flags->schema(), c.in, run.checkpoint_seconds);
+        mechanics::CalibrationProgress progress = calibration_progress(checkpoint, c.resumed ? &*c.resumed : nullptr);
+        if (!c.quiet && !progress.done.empty())
+          fmt::print("resumed: {} finished simulations replayed from {}\n", progress.done.size(),
+                     checkpoint_path(dir).string());
+        const auto result =
+            mechanics::calibrate_normal_stiffness(packing, run.target_storage_modulus, options, run.tolerance,
+                                                  static_cast<int>(run.max_iterations), &progress);
         std::ostringstream csv;
         csv << "evaluation,normal_stiffness,shear_stiffness,storage_modulus\n";
         const double ratio = options.shear_stiffness / options.normal_stiffness;

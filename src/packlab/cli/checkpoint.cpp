@@ -6,6 +6,8 @@
 #include <cstdint>
 #include <cstdlib>
 #include <fstream>
+#include <memory>
+#include <vector>
 
 #include "packlab/cli/options.hpp"
 #include "packlab/core/binary_io.hpp"
@@ -86,6 +88,63 @@ void CheckpointWriter::write(const std::function<void(std::ostream&)>& state) {
   ++written_;
   if (const char* kill_after = std::getenv("PACKLAB_KILL_AFTER_CHECKPOINTS"))
     if (std::atol(kill_after) == written_) ::raise(SIGKILL);
+}
+
+namespace {
+
+void write_evaluations(std::ostream& out, const std::vector<mechanics::CalibrationStep>& done) {
+  binary::write(out, static_cast<std::uint64_t>(done.size()));
+  for (const mechanics::CalibrationStep& step : done) {
+    binary::write(out, static_cast<std::uint8_t>(step.finite_difference ? 1 : 0));
+    binary::write_vector(out, step.parameters);
+    binary::write_vector(out, step.responses);
+  }
+}
+
+}  // namespace
+
+mechanics::CalibrationProgress calibration_progress(CheckpointWriter& writer, SavedRun* resumed) {
+  mechanics::CalibrationProgress progress;
+  if (resumed != nullptr) {
+    std::istream& in = resumed->state;
+    std::uint64_t count = 0;
+    binary::read(in, count, "evaluations");
+    if (count > 100000) fail_input("checkpoint is damaged: implausible number of evaluations");
+    for (std::uint64_t k = 0; k < count; ++k) {
+      mechanics::CalibrationStep step;
+      std::uint8_t finite_difference = 0;
+      binary::read(in, finite_difference, "evaluation");
+      binary::read_vector(in, step.parameters, "evaluation parameters", 64);
+      binary::read_vector(in, step.responses, "evaluation responses", 64);
+      step.finite_difference = finite_difference != 0;
+      progress.done.push_back(std::move(step));
+    }
+    std::uint8_t running = 0;
+    binary::read(in, running, "running simulation");
+    if (running != 0) {
+      binary::read_vector(in, progress.running, "running parameters", 64);
+      progress.running_state = &in;
+    }
+  }
+  // The evaluations finished so far, shared by the two writers below.
+  auto done = std::make_shared<std::vector<mechanics::CalibrationStep>>(progress.done);
+  progress.on_evaluation = [&writer, done](const std::vector<mechanics::CalibrationStep>& evaluations) {
+    *done = evaluations;
+    writer.write([&](std::ostream& out) {
+      write_evaluations(out, *done);
+      binary::write(out, std::uint8_t{0});
+    });
+  };
+  progress.checkpoint = [&writer, done](const std::vector<double>& parameters,
+                                        const std::function<void(std::ostream&)>& state) {
+    writer.write_if_due([&](std::ostream& out) {
+      write_evaluations(out, *done);
+      binary::write(out, std::uint8_t{1});
+      binary::write_vector(out, parameters);
+      state(out);
+    });
+  };
+  return progress;
 }
 
 }  // namespace packlab::cli

@@ -20,6 +20,7 @@
 #include <string>
 
 #include "packlab/io/config.hpp"
+#include "packlab/mechanics/calibration.hpp"
 
 namespace packlab::cli {
 
@@ -60,5 +61,13 @@ class CheckpointWriter {
   long written_ = 0;
   std::chrono::steady_clock::time_point last_ = std::chrono::steady_clock::now();
 };
+
+// A resumable calibration (calibrate compress, calibrate shear) wired to the command's
+// checkpoint: one after every finished simulation and one every checkpoint_seconds within a
+// simulation (when its test takes checkpoints: the dynamic solvers). The state is the finished
+// evaluations, then whether a simulation was running, its parameters and the test's own state.
+// With `resumed`, the returned progress replays the saved evaluations and hands the running
+// simulation's state to the test (mechanics::CalibrationProgress); `resumed` must outlive it.
+mechanics::CalibrationProgress calibration_progress(CheckpointWriter& writer, SavedRun* resumed);
 
 }  // namespace packlab::cli

@@ -90,6 +90,7 @@ ConfigSchema shear_calibration_options(ShearCalibrationRun& r) {
       .integer("max_iterations", r.max_iterations, "Newton iterations at most")
       .range({1.0, 1000.0, false, false});
   add_oscillatory_shear_options(schema, r.test);
+  add_checkpoint_seconds(schema, r.checkpoint_seconds);
   return schema;
 }
 
@@ -236,6 +237,7 @@ ConfigSchema compression_calibration_options(CompressionCalibrationRun& r) {
                "Use every finite-difference derivative (default: E from E_b and strength from sigma_max only, as the "
                "paper)");
   add_compression_test_keys(schema, r.setup);
+  add_checkpoint_seconds(schema, r.setup.checkpoint_seconds);
   return schema;
 }
 

@@ -200,6 +200,7 @@ struct ShearCalibrationRun {
   double target_storage_modulus = 0.0;  // [Pa]
   double tolerance = 0.005;             // relative
   long max_iterations = 10;
+  double checkpoint_seconds = 120;  // command line only
 };
 ConfigSchema shear_calibration_options(ShearCalibrationRun& r);
 

@@ -18,8 +18,17 @@ std::string CalibrationResult::reason() const {
                    : fmt::format("not converged after {} iterations ({} simulations)", iterations, evaluations);
 }
 
+std::istream* CalibrationProgress::take_resume(const std::vector<double>& parameters) {
+  if (running_state == nullptr || running != parameters) return nullptr;
+  std::istream* state = running_state;
+  running_state = nullptr;
+  running.clear();
+  return state;
+}
+
 CalibrationResult calibrate(const ResponseFunction& response, const std::vector<double>& start,
-                            const std::vector<double>& targets, const CalibrationOptions& options) {
+                            const std::vector<double>& targets, const CalibrationOptions& options,
+                            CalibrationProgress* progress) {
   const std::size_t n = start.size();
   require(n >= 1 && n == targets.size(), "parameters", static_cast<double>(n),
           fmt::format("as many as the targets ({}), at least one", targets.size()));
@@ -39,10 +48,25 @@ CalibrationResult calibrate(const ResponseFunction& response, const std::vector<
 
   CalibrationResult result;
   auto evaluate = [&](const std::vector<double>& p, bool finite_difference) {
-    std::vector<double> r = response(p);
+    const std::size_t k = result.history.size();
+    std::vector<double> r;
+    if (progress != nullptr && k < progress->done.size()) {
+      // Replay: the same parameters, bit for bit, or the checkpoint is not of this run.
+      const CalibrationStep& saved = progress->done[k];
+      if (saved.parameters != p || saved.finite_difference != finite_difference || saved.responses.size() != n)
+        fail_input(fmt::format(
+            "calibration checkpoint: evaluation {} was at other parameters than the resumed run asks for (a "
+            "checkpoint of another run or model)",
+            k + 1));
+      r = saved.responses;
+    } else {
+      r = response(p);
+    }
     require(r.size() == n, "responses", static_cast<double>(r.size()), fmt::format("{} values", n));
     ++result.evaluations;
     result.history.push_back({p, r, finite_difference});
+    if (progress != nullptr && k >= progress->done.size() && progress->on_evaluation)
+      progress->on_evaluation(result.history);
     return r;
   };
   auto converged = [&](const std::vector<double>& r) {

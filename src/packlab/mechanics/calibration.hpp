@@ -11,6 +11,7 @@
 #pragma once
 
 #include <functional>
+#include <iosfwd>
 #include <string>
 #include <vector>
 
@@ -43,9 +44,31 @@ struct CalibrationResult {
 
 using ResponseFunction = std::function<std::vector<double>(const std::vector<double>& parameters)>;
 
+// Resumable calibrations (`packlab calibrate compress|shear --resume`, cli/checkpoint.hpp).
+// The iteration is deterministic: a resumed run asks for the same parameters in the same order,
+// so the evaluations an interrupted run finished are replayed instead of simulated, and the
+// simulation it was in goes on from that simulation's own checkpoint.
+struct CalibrationProgress {
+  std::vector<CalibrationStep> done;  // finished evaluations of the interrupted run, in order
+  // The simulation the run was in: its parameters (empty: none) and its saved state (the
+  // test's checkpoint), taken by the first new evaluation at exactly these parameters.
+  std::vector<double> running;
+  std::istream* running_state = nullptr;
+  // After every new evaluation, with all evaluations so far (to write a checkpoint).
+  std::function<void(const std::vector<CalibrationStep>& evaluations)> on_evaluation;
+  // Within a simulation (the test's `checkpoint` hook): the parameters being simulated and the
+  // writer of the test's state. Not called at the end of a simulation (on_evaluation follows).
+  std::function<void(const std::vector<double>& parameters, const std::function<void(std::ostream&)>& state)>
+      checkpoint;
+  // The saved state for a simulation at `parameters` (once), or null.
+  std::istream* take_resume(const std::vector<double>& parameters);
+};
+
 // InputError when sizes differ, a target or start value is not positive and finite, or the
-// options are out of range.
+// options are out of range; with `progress`, also when a replayed evaluation's parameters are
+// not those the iteration asks for (the checkpoint is of another run).
 CalibrationResult calibrate(const ResponseFunction& response, const std::vector<double>& start,
-                            const std::vector<double>& targets, const CalibrationOptions& options = {});
+                            const std::vector<double>& targets, const CalibrationOptions& options = {},
+                            CalibrationProgress* progress = nullptr);
 
 }  // namespace packlab::mechanics

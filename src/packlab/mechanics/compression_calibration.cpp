@@ -1,5 +1,7 @@
 #include "packlab/mechanics/compression_calibration.hpp"
 
+#include <functional>
+#include <ostream>
 #include <utility>
 
 #include "packlab/core/error.hpp"
@@ -9,32 +11,49 @@ namespace packlab::mechanics {
 CompressionCalibrationResult calibrate_compression(const Packing& model, const UniaxialCompressionSetup& setup,
                                                    double target_youngs_modulus, double target_strength,
                                                    const CalibrationOptions& options,
-                                                   const CompressionRunCallback& on_run) {
+                                                   const CompressionRunCallback& on_run,
+                                                   CalibrationProgress* progress) {
   require(target_youngs_modulus > 0.0, "target_youngs_modulus", target_youngs_modulus,
           "> 0 Pa (or compute the bulk factor)");
   require(target_strength > 0.0, "target_strength", target_strength, "> 0 Pa");
-  std::vector<std::pair<std::vector<double>, UniaxialCompressionResult>> runs;
-  auto response = [&](const std::vector<double>& p) {
+  // The calibration ends on an iterate (never on a finite-difference run): keep the last run.
+  std::vector<double> last_parameters;
+  UniaxialCompressionResult last;
+  int simulation = progress != nullptr ? static_cast<int>(progress->done.size()) : 0;
+  auto simulate = [&](const std::vector<double>& p) {
     UniaxialCompressionSetup run = setup;
     run.materials.silica_youngs_modulus = p[0];
     run.materials.silica_strength = p[1];
     run.options.types = opal_particle_types(run.materials);
     run.options.bond_materials = opal_bond_materials(run.materials);
-    UniaxialCompressionResult r = run_uniaxial_compression(model, run.options);
-    if (on_run) on_run(static_cast<int>(runs.size()) + 1, p, r);
+    if (progress != nullptr) {
+      run.options.resume = progress->take_resume(p);
+      if (progress->checkpoint)
+        run.options.checkpoint = [progress, p](const std::function<void(std::ostream&)>& state, bool end) {
+          if (!end) progress->checkpoint(p, state);
+        };
+    }
+    return run_uniaxial_compression(model, run.options);
+  };
+  auto response = [&](const std::vector<double>& p) {
+    UniaxialCompressionResult r = simulate(p);
+    if (on_run) on_run(++simulation, p, r);
     std::vector<double> out{r.youngs_modulus, r.strength};
-    runs.emplace_back(p, std::move(r));
+    last_parameters = p;
+    last = std::move(r);
     return out;
   };
   CompressionCalibrationResult result;
   result.calibration = calibrate(response, {setup.materials.silica_youngs_modulus, setup.materials.silica_strength},
-                                 {target_youngs_modulus, target_strength}, options);
-  for (auto it = runs.rbegin(); it != runs.rend(); ++it)
-    if (it->first == result.calibration.parameters) {
-      result.final = std::move(it->second);
-      result.has_final = true;
-      break;
-    }
+                                 {target_youngs_modulus, target_strength}, options, progress);
+  if (last_parameters != result.calibration.parameters) {
+    // A resumed run whose last simulation was replayed from its checkpoint: the outputs of the
+    // final parameters need that simulation once more (it gives the same result).
+    last = simulate(result.calibration.parameters);
+    last_parameters = result.calibration.parameters;
+  }
+  result.final = std::move(last);
+  result.has_final = true;
   return result;
 }
 

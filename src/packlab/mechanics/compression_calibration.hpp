@@ -31,10 +31,13 @@ using CompressionRunCallback =
     std::function<void(int run, const std::vector<double>& parameters, const UniaxialCompressionResult& result)>;
 
 // InputError unless both targets are > 0 Pa. `setup` is finished (UniaxialCompressionSetup::finish).
+// `progress` (optional) makes the run resumable (mechanics/calibration.hpp): the dynamic
+// solver's checkpoints of the running simulation go to progress->checkpoint.
 CompressionCalibrationResult calibrate_compression(const Packing& model, const UniaxialCompressionSetup& setup,
                                                    double target_youngs_modulus, double target_strength,
                                                    const CalibrationOptions& options,
-                                                   const CompressionRunCallback& on_run = {});
+                                                   const CompressionRunCallback& on_run = {},
+                                                   CalibrationProgress* progress = nullptr);
 
 // Every simulation of a calibration in order: evaluation, finite_difference (flag),
 // bond_youngs_modulus, bond_strength, youngs_modulus, strength.

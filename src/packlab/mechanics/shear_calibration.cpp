@@ -1,6 +1,8 @@
 #include "packlab/mechanics/shear_calibration.hpp"
 
 #include <cmath>
+#include <functional>
+#include <ostream>
 
 #include "packlab/core/error.hpp"
 #include "packlab/mechanics/calibration.hpp"
@@ -9,7 +11,7 @@ namespace packlab::mechanics {
 
 ShearCalibrationResult calibrate_normal_stiffness(const Packing& bonded, double target,
                                                   const OscillatoryShearOptions& options, double tolerance,
-                                                  int max_iterations) {
+                                                  int max_iterations, CalibrationProgress* progress) {
   validate(options);
   require(target > 0.0 && std::isfinite(target), "target storage modulus", target, "> 0 Pa");
   OscillatoryShearOptions o = options;
@@ -23,15 +25,27 @@ ShearCalibrationResult calibrate_normal_stiffness(const Packing& bonded, double 
     e.normal_stiffness = p[0];
     e.shear_stiffness = ratio * p[0];
     e.relax = false;
+    if (progress != nullptr) {
+      e.resume = progress->take_resume(p);
+      if (progress->checkpoint)
+        e.checkpoint = [progress, p](const std::function<void(std::ostream&)>& state, bool end) {
+          if (!end) progress->checkpoint(p, state);
+        };
+    }
     OscillatoryShearResult r = run_oscillatory_shear(relaxed, e);
-    out.tried_normal_stiffness.push_back(p[0]);
-    out.tried_storage_modulus.push_back(r.storage_modulus_mean);
     return std::vector<double>{r.storage_modulus_mean};
   };
   CalibrationOptions co;
   co.tolerance = tolerance;
   co.max_iterations = max_iterations;
-  const CalibrationResult c = calibrate(response, {options.normal_stiffness}, {target}, co);
+  const CalibrationResult c = calibrate(response, {options.normal_stiffness}, {target}, co, progress);
+  // The evaluations replayed from a checkpoint are in the history, not in the calls above.
+  out.tried_normal_stiffness.clear();
+  out.tried_storage_modulus.clear();
+  for (const CalibrationStep& step : c.history) {
+    out.tried_normal_stiffness.push_back(step.parameters[0]);
+    out.tried_storage_modulus.push_back(step.responses[0]);
+  }
   out.normal_stiffness = c.parameters[0];
   out.shear_stiffness = ratio * c.parameters[0];
   out.storage_modulus = c.responses[0];

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "packlab/core/packing.hpp"
+#include "packlab/mechanics/calibration.hpp"
 #include "packlab/mechanics/oscillatory_shear.hpp"
 
 namespace packlab::mechanics {
@@ -23,8 +24,10 @@ struct ShearCalibrationResult {
   std::vector<double> tried_normal_stiffness, tried_storage_modulus;
   std::string reason;
 };
+// `progress` (optional) makes the run resumable (mechanics/calibration.hpp); the relaxation
+// before the first evaluation is done again on resume (it is deterministic).
 ShearCalibrationResult calibrate_normal_stiffness(const Packing& bonded, double target,
                                                   const OscillatoryShearOptions& options, double tolerance = 0.005,
-                                                  int max_iterations = 10);
+                                                  int max_iterations = 10, CalibrationProgress* progress = nullptr);
 
 }  // namespace packlab::mechanics
