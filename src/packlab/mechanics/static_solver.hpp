@@ -72,6 +72,9 @@ class StaticSolver {
   const std::vector<std::uint8_t>& active_links() const { return active_; }
   const StaticLinks& links() const { return links_; }
   const StaticSolverStats& stats() const { return stats_; }
+  // r^T K^-1 r by the current factor (r: one entry per unknown, stats().unknowns): the
+  // energy-norm measure of the refinement's convergence check, after at least one solve.
+  double inverse_norm_squared(const std::vector<double>& r) const;
 
   struct Factor;  // the factorization of one backend (static_solver.cpp)
 
