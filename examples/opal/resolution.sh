@@ -1,9 +1,13 @@
 #!/usr/bin/env bash
 # The FCC inverse opal of docs/opal.md at finer resolution with the quasi-static solver
 # (docs/static-solver.md): the same sample (2 x 1 FCC periods laterally, 3 pore layers over two
-# substrate layers, [111] along z, pores of 0.92 of their spacing) built from particles of the
-# same d = 15 nm with every length scaled by s, so the pores are 9.2 s particle diameters across
-# (the paper: 51). For each scale and force-biased packing seed: Young's modulus from one linear
+# substrate layers, [111] along z) built from particles of the same d = 15 nm with the pore
+# spacing a = 150 s nm scaled by s. The pore diameter keeps the paper's relative window
+# opening: eq. (1) removes particles within R + r of a pore centre, and R + r = 1.02 a/2 at
+# every scale (D = 1.02 a - d: 138 nm at s = 1, as examples/opal/run.sh), so the pores are
+# 9.2 ... 24.5 particle diameters across at s = 1 ... 2.5 (the paper: 51). Scaling D with s
+# instead would close the windows (R + r < a/2 for s > 1.25: a closed-cell solid, porosity
+# 0.69 and E 2.7 GPa at s = 1.5 instead of an inverse opal). For each scale and force-biased packing seed: Young's modulus from one linear
 # solve and the strength by sequential linear analysis, with the paper's bond values
 # (examples/opal/silica.toml). It tests what docs/opal.md gives as the reason for E 1.10 GPa
 # against the paper's 1.7 GPa: struts two to three particles thick at D/d = 9.2.
@@ -23,16 +27,17 @@ CFG="$HERE/silica.toml"
 mkdir -p "$OUT"
 scaled() { "$PYTHON" -c "print(f'{$1 * $2:.6g}e-9')"; }
 for s in $SCALES; do
-  # Box: 2 a x sqrt(3) a laterally (a = 150 s nm, the pore spacing), height = 2 d of substrate
-  # + 2 [111] layer spacings + D (D = 138 s nm), as in examples/opal/run.sh at s = 1.
-  box="$(scaled 300 "$s"),$(scaled 259.81 "$s"),$("$PYTHON" -c "print(f'{30 + 382.95 * $s:.6g}e-9')")"
-  pore=$(scaled 138 "$s")
+  # Box: 2 a x sqrt(3) a laterally, height = 2 d of substrate + 2 [111] layer spacings
+  # (a sqrt(2/3) each) + D, as in examples/opal/run.sh at s = 1 (412.95 nm).
+  box="$(scaled 300 "$s"),$(scaled 259.81 "$s"),$("$PYTHON" -c "print(f'{15 + 397.95 * $s:.6g}e-9')")"
+  pore=$("$PYTHON" -c "print(f'{153 * $s - 15:.6g}e-9')")
+  spacing_ratio=$("$PYTHON" -c "print(f'{150 * $s / (153 * $s - 15):.6g}')")
   for seed in $SEEDS; do
     run="$OUT/s$s-seed$seed"
     [ -f "$run/compress/report.json" ] && continue  # finished before (the study can be rerun to go on)
     "$PACKLAB" generate fba --box "$box" --diameter 15e-9 --porosity 0.38 --periodic xy --seed "$seed" \
       --quiet --no-plots --out "$run/packing"
-    "$PACKLAB" build opal "$run/packing/packing.vtu" --pores fcc --pore-diameter "$pore" --pore-spacing 1.087 \
+    "$PACKLAB" build opal "$run/packing/packing.vtu" --pores fcc --pore-diameter "$pore" --pore-spacing "$spacing_ratio" \
       --orientation 111 --quiet --out "$run/opal"
     only_modulus=()
     if "$PYTHON" -c "import sys; sys.exit(0 if $s > $STRENGTH_UP_TO else 1)"; then only_modulus=(--max-strain 1e-6); fi
