@@ -465,16 +465,20 @@ def _run_dask(units, packlab, scheduler, progress):
 # ---------------------------------------------------------------- aggregation
 
 
-def _lookup(report, path):
-    value = report
-    for part in path.split("."):
-        if isinstance(value, dict) and part in value:
-            value = value[part]
-        elif isinstance(value, list) and part.isdigit() and int(part) < len(value):
-            value = value[int(part)]
-        else:
-            return ""
-    return value
+def _lookup(value, parts):
+    """The value at a dotted path; a key may itself hold dots ("mean_coordination_eps_0.01"):
+    the longest key that matches is taken first."""
+    if not parts:
+        return value
+    for n in range(len(parts), 0, -1):
+        head = ".".join(parts[:n])
+        if isinstance(value, dict) and head in value:
+            found = _lookup(value[head], parts[n:])
+            if found != "":
+                return found
+        elif isinstance(value, list) and n == 1 and head.isdigit() and int(head) < len(value):
+            return _lookup(value[int(head)], parts[1:])
+    return ""
 
 
 def _collect(spec, units, task, field):
@@ -488,7 +492,7 @@ def _collect(spec, units, task, field):
         key, path = task["units"][-1], field
     try:
         with open(os.path.join(units[key]["dir"], "report.json")) as f:
-            value = _lookup(json.load(f), path)
+            value = _lookup(json.load(f), path.split("."))
     except (OSError, ValueError):
         return ""
     return value if isinstance(value, (int, float, str)) and not isinstance(value, bool) else json.dumps(value)

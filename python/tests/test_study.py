@@ -320,3 +320,19 @@ def test_quick_example_with_packlab(tmp_path):
     sweep = list(rows[0])[0]
     assert plot_main(["study", str(out), "--x", sweep, "--y", field, "--out", str(png)]) == 0
     assert png.stat().st_size > 1000
+
+
+def test_plot_study(tmp_path, fake):
+    spec = write_spec(tmp_path / "s.toml", SIMPLE.replace("value = [1, 2]", "value = [1, 2, 4]"))
+    out = tmp_path / "study"
+    studies.study(spec, out, workers=2, packlab=fake["binary"], quiet=True)
+    from packlab.plot import main as plot_main
+    from packlab.plot.study import figure
+
+    png = tmp_path / "study.png"
+    assert plot_main(["study", str(out), "--x", "value", "--y", "results.value", "--out", str(png)]) == 0
+    assert png.stat().st_size > 1000
+    line = figure(str(out), "value", "results.value").axes[0].lines[0]
+    assert list(line.get_xdata()) == [1.0, 2.0, 4.0]
+    with pytest.raises(SystemExit):  # a field that was not collected: argparse's error, exit 2
+        plot_main(["study", str(out), "--x", "value", "--y", "results.nothing", "--out", str(png)])
