@@ -231,16 +231,23 @@ def plan(spec, out):
     multi = len(spec["stages"]) > 1
     stage_names = [s["name"] for s in spec["stages"]]
     units, tasks = {}, []
+    # A swept key written as {KEY} in some argument or option is a variable, substituted there
+    # (e.g. a config file per value); so is a multi-stage sweep's key without a stage prefix
+    # (a label such as a scale factor). The others are options of their stage.
+    templates = " ".join(str(v) for s in spec["stages"] for v in [*s["args"], *s["options"].values()])
+    variable_keys = {k for k in spec["sweep"] if "{" + k + "}" in templates or (multi and "." not in k)}
     for point in points(spec):
         for realization, seed in enumerate(spec["seeds"]):
             # Placeholders: {seed}, {spec_dir}, the variables of the point (a multi-stage sweep's
             # keys without a stage prefix), and {STAGE}: an earlier stage's folder.
             variables = {"seed": seed, "spec_dir": spec["spec_dir"]}
-            variables.update({k: v for k, v in point.items() if multi and "." not in k})
+            variables.update({k: v for k, v in point.items() if k in variable_keys})
             keys, dirs = {}, {}
             for stage in spec["stages"]:
                 options = dict(stage["options"])
                 for k, v in point.items():
+                    if k in variable_keys:
+                        continue
                     if not multi:
                         options[k] = v
                     elif "." in k and k.split(".", 1)[0] == stage["name"]:

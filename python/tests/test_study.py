@@ -336,3 +336,15 @@ def test_plot_study(tmp_path, fake):
     assert list(line.get_xdata()) == [1.0, 2.0, 4.0]
     with pytest.raises(SystemExit):  # a field that was not collected: argparse's error, exit 2
         plot_main(["study", str(out), "--x", "value", "--y", "results.nothing", "--out", str(png)])
+
+
+def test_placeholder_variables():
+    table = {"command": "generate vem", "options": {"config": "{spec_dir}/k{knv}.toml", "voids": 5},
+             "sweep": {"knv": ["1e1", "1e-1"], "voids": [5, 6]}, "seeds": [3]}
+    units, tasks = studies.plan(studies.load_spec(table, spec_dir="/specs"), "/tmp/x")
+    argv = units[tasks[0]["units"][0]]["argv"]
+    assert argv[:8] == ["generate", "vem", "--config", "/specs/k1e1.toml", "--voids", "5", "--seed", "3"]
+    assert "--knv" not in argv and len(units) == 4
+    # The key does not depend on where the SPEC's folder is.
+    moved, _ = studies.plan(studies.load_spec(table, spec_dir="/other"), "/tmp/x")
+    assert set(moved) == set(units)
