@@ -420,7 +420,7 @@ def _run_local(units, packlab, workers, progress):
                         progress.update(results[key])
                         continue
                     running[pool.submit(run_unit, unit, packlab, deps)] = key
-            progress.running = len(running)
+            progress.running = min(len(running), workers)  # the rest wait in the pool
             progress.update(force=False)
             if not running:
                 continue
@@ -428,7 +428,7 @@ def _run_local(units, packlab, workers, progress):
             for future in finished:
                 key = running.pop(future)
                 results[key] = future.result()
-                progress.running = len(running)
+                progress.running = min(len(running), workers)  # the rest wait in the pool
                 progress.update(results[key])
     return results
 
@@ -456,7 +456,8 @@ def _run_dask(units, packlab, scheduler, progress):
             futures[key] = client.submit(_remote_unit, unit, packlab, *[futures[d] for d in unit["deps"]],
                                          key=f"packlab-study-{key}", pure=False, retries=2)
         results = {}
-        progress.running = len(futures)
+        remaining = len(futures)
+        progress.running = min(remaining, progress.workers)  # at most one per worker thread
         for future in as_completed(list(futures.values())):
             key = future.key.removeprefix("packlab-study-")
             try:
@@ -464,7 +465,8 @@ def _run_dask(units, packlab, scheduler, progress):
             except Exception as error:  # the worker itself died, retries spent
                 results[key] = {"key": key, "stage": units[key]["stage"], "status": "failed", "seconds": 0.0,
                                 "error": f"dask: {type(error).__name__}: {error}"}
-            progress.running -= 1
+            remaining -= 1
+            progress.running = min(remaining, progress.workers)
             progress.update(results[key])
     return results
 
