@@ -591,8 +591,10 @@ def study(spec, out, workers=None, scheduler=None, packlab=None, quiet=False):
     """Runs the study ``spec`` (a SPEC file name or the dict it holds) into folder ``out``:
     the units not done yet, on ``workers`` local processes (default: the cores) or on the Dask
     cluster at ``scheduler`` ("tcp://HOST:PORT"); then writes out/tasks.csv and
-    out/summary.csv. Returns a dict: tasks (the rows of tasks.csv as dicts), failed (their
-    count), ran (the units run now). Raises SpecError for a bad SPEC."""
+    out/summary.csv. ``packlab`` is the binary (default: $PACKLAB_BINARY, then PATH);
+    ``quiet`` drops the progress line. Returns a dict: tasks (the rows of tasks.csv as dicts),
+    failed (their count), ran (the stage runs run now). Raises SpecError for a bad SPEC. See
+    docs/study.md."""
     spec = load_spec(spec)
     packlab = _find_packlab(packlab)
     workers = workers or os.cpu_count() or 1
