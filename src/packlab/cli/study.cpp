@@ -29,10 +29,9 @@ void add_study(CLI::App& app) {
     bool quiet = false;
   };
   auto opt = std::make_shared<Options>();
-  auto* cmd = app.add_subcommand(
-      "study",
-      "Run a study: a command (or stages generate -> bond -> test) swept over options and seeds, on local "
-      "processes or a Dask cluster; resumable; writes DIR/tasks.csv and DIR/summary.csv (docs/study.md)");
+  auto* cmd = app.add_subcommand("study",
+                                 "Run a parameter study (option sweeps x seeds, or stages generate -> bond -> test) on "
+                                 "local processes or a Dask cluster, resumable (docs/study.md)");
   cmd->add_option("spec", opt->spec, "Study file (TOML, docs/study.md)")->required();
   cmd->add_option("--out", opt->out, "Study folder (created; rerun the same command to resume)")->required();
   cmd->add_option("--workers", opt->workers, "Local worker processes (default: the number of cores)")
