@@ -8,6 +8,7 @@ packages=(
   libgtest-dev libgmock-dev libbenchmark-dev
   libsuitesparse-dev libopenblas-openmp-dev
   python3 python3-dev pybind11-dev python3-numpy python3-matplotlib python3-pytest
+  python3-distributed  # `packlab study --scheduler`: the Dask cluster (docs/study.md); the local pool needs nothing
 )
 missing=()
 for p in "${packages[@]}"; do

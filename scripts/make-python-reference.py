@@ -37,7 +37,7 @@ def main(out):
     lines += ["## Functions", ""]
     for n in functions:
         lines += entry(f"packlab.{n}", getattr(core, n))
-    for n in ["read_table", "write_table"]:
+    for n in ["read_table", "write_table", "study"]:
         lines += entry(f"packlab.{n}", getattr(packlab, n))
     lines += ["## Classes", ""]
     for n in classes:

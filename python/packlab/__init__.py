@@ -26,4 +26,15 @@ except ImportError as _error:  # pragma: no cover - depends on the build
 
 from .tables import read_table, write_table  # noqa: E402,F401
 
-__all__ += ["read_table", "write_table"]
+__all__ += ["read_table", "write_table", "study"]
+
+
+def __getattr__(name):
+    # packlab.study (parameter studies, docs/study.md) is imported on first use: importing it
+    # here would load packlab.studies before `python3 -m packlab.studies` (the runner that
+    # `packlab study` starts) executes it, which runpy warns about.
+    if name == "study":
+        from .studies import study
+
+        return study
+    raise AttributeError(f"module 'packlab' has no attribute '{name}'")

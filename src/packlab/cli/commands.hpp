@@ -32,6 +32,8 @@ void add_test_shear(CLI::App& test);
 void add_test_compress(CLI::App& test);
 void add_calibrate_shear(CLI::App& calibrate);
 void add_calibrate_compress(CLI::App& calibrate);
+// Parameter studies: `study` runs the Python runner packlab.studies (docs/study.md).
+void add_study(CLI::App& app);
 
 // Config-file references (io/config.hpp schemas) of the commands that read one, and the
 // `config-keys` command printing them all.

@@ -46,6 +46,7 @@ int main(int argc, char** argv) {
   calibrate->require_subcommand(1);
   packlab::cli::add_calibrate_shear(*calibrate);
   packlab::cli::add_calibrate_compress(*calibrate);
+  packlab::cli::add_study(app);
   // CLI11 says only "A subcommand is required" for a misspelt one: name it and list the known.
   if (argc > 1 && argv[1][0] != '-') {
     std::string known;

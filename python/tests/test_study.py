@@ -1,0 +1,350 @@
+"""packlab.study: the SPEC's expansion (product, zip, ranges, derived seeds), skipping finished
+tasks, kill -9 of the runner and resume, failing tasks, a changed SPEC, the Dask path, and one
+real study (examples/study/quick.toml) with the packlab binary.
+
+Most tests run a stand-in for the packlab binary (a small Python script) that sleeps a little,
+writes report.json atomically like packlab, and appends one line to a marker file each time a
+run completes: the marker counts the runs that finished."""
+
+import csv
+import json
+import os
+import signal
+import subprocess
+import sys
+import textwrap
+import time
+
+import pytest
+
+from packlab import studies
+
+REPO = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+PYTHON_DIR = os.path.join(REPO, "python")
+
+FAKE = textwrap.dedent("""\
+    #!/usr/bin/env python3
+    # A stand-in for packlab: <command words> --value X [--fail-above Y] [--sleep S] --seed N --out DIR
+    import json, os, sys, time
+    argv = sys.argv[1:]
+    opts = {}
+    k = 0
+    while k < len(argv):
+        if argv[k].startswith("--"):
+            if k + 1 < len(argv) and not argv[k + 1].startswith("--"):
+                opts[argv[k][2:]] = argv[k + 1]; k += 2
+            else:
+                opts[argv[k][2:]] = True; k += 1
+        else:
+            k += 1
+    time.sleep(float(opts.get("sleep", 0.05)))
+    value = float(opts.get("value", 0))
+    if "fail-above" in opts and value > float(opts["fail-above"]):
+        print("packlab: error: --value " + str(value) + " is too large", file=sys.stderr)
+        sys.exit(2)
+    out = opts["out"]
+    os.makedirs(out, exist_ok=True)
+    inp = [a for a in argv if a.endswith("report.json")]
+    base = json.load(open(inp[0]))["results"]["value"] if inp else 0.0
+    report = {"results": {"value": base + value + int(opts.get("seed", 0)) % 7, "flag": "flag" in opts},
+              "seconds": 0.01}
+    with open(os.path.join(out, ".r.tmp"), "w") as f:
+        json.dump(report, f)
+    os.replace(os.path.join(out, ".r.tmp"), os.path.join(out, "report.json"))
+    with open(os.environ["FAKE_MARKER"], "a") as f:
+        f.write(out + "\\n")
+    """)
+
+
+@pytest.fixture
+def fake(tmp_path, monkeypatch):
+    """The stand-in binary and its marker file (one line per completed run: its folder)."""
+    path = tmp_path / "fake-packlab"
+    path.write_text(FAKE.replace("/usr/bin/env python3", sys.executable))
+    path.chmod(0o755)
+    marker = tmp_path / "marker.txt"
+    marker.write_text("")
+    monkeypatch.setenv("FAKE_MARKER", str(marker))
+    return {"binary": str(path), "marker": marker}
+
+
+def runs(fake):
+    return fake["marker"].read_text().split()
+
+
+def write_spec(path, text):
+    path.write_text(textwrap.dedent(text))
+    return str(path)
+
+
+def read_csv(path):
+    with open(path, newline="") as f:
+        return list(csv.DictReader(f))
+
+
+SIMPLE = """\
+    command = "generate fake"
+    realizations = 3
+    seed = 7
+    collect = ["results.value", "seconds"]
+    [options]
+    sleep = 0.05
+    [sweep]
+    value = [1, 2]
+    """
+
+
+def test_product_zip_ranges_and_seeds():
+    spec = studies.load_spec({"command": "generate fba", "sweep": {"a": [1, 2], "b": {"start": 0.1, "stop": 0.3,
+                                                                                      "step": 0.1}},
+                              "realizations": 2, "seed": 5})
+    assert spec["sweep"]["b"] == [0.1, 0.2, 0.3]
+    pts = studies.points(spec)
+    assert len(pts) == 6 and pts[0] == {"a": 1, "b": 0.1} and pts[-1] == {"a": 2, "b": 0.3}
+    assert spec["seeds"] == [studies.derive_seed(5, 0), studies.derive_seed(5, 1)]
+    assert spec["seeds"][0] != spec["seeds"][1] and all(1 <= s < 2**31 for s in spec["seeds"])
+    # The seeds depend on the study seed and the realization only (not on the count).
+    assert studies.load_spec({"command": "x", "realizations": 3, "seed": 5})["seeds"][:2] == spec["seeds"]
+    assert studies.load_spec({"command": "x", "realizations": 1, "seed": 6})["seeds"] != spec["seeds"][:1]
+    zipped = studies.load_spec({"command": "x", "combine": "zip",
+                                "sweep": {"a": [1, 2, 3], "b": {"start": 10, "stop": 30, "num": 3}}})
+    assert studies.points(zipped) == [{"a": 1, "b": 10}, {"a": 2, "b": 20}, {"a": 3, "b": 30}]
+    units, tasks = studies.plan(zipped, "/tmp/x")
+    assert len(units) == 3 and len(tasks) == 3
+    assert units[tasks[0]["units"][0]]["argv"][:6] == ["x", "--a", "1", "--b", "10", "--seed"]
+    # The key does not depend on the output folder; it does on every option and the seed.
+    again, _ = studies.plan(zipped, "/elsewhere")
+    assert set(again) == set(units)
+
+
+@pytest.mark.parametrize("table, words", [
+    ({"command": "x", "combine": "zip", "sweep": {"a": [1, 2], "b": [1]}}, ["zip", "differ in length"]),
+    ({"command": "x", "combine": "cross"}, ["combine", "'cross'", "product, zip"]),
+    ({"command": "x", "sweep": {"a": {"start": 1}}}, ["sweep 'a'", "start, stop"]),
+    ({"command": "x", "realizations": 0}, ["realizations = 0", ">= 1"]),
+    ({"command": "x", "bogus": 1}, ["unknown SPEC key 'bogus'"]),
+    ({"stage": [{"name": "a", "command": "x", "args": ["{b}/p.vtu"]}, {"name": "b", "command": "y"}]},
+     ["{b}/p.vtu", "does not run before it"]),
+])
+def test_spec_errors_name_the_key(table, words):
+    with pytest.raises(studies.SpecError) as error:
+        studies.plan(studies.load_spec(table), "/tmp/x")
+    for word in words:
+        assert word in str(error.value)
+
+
+def test_cli_spec_error_exit_code_2(tmp_path, fake):
+    spec = write_spec(tmp_path / "s.toml", 'command = "x"\ncombine = "cross"\n')
+    result = subprocess.run([sys.executable, "-m", "packlab.studies", spec, "--out", str(tmp_path / "o"), "--packlab",
+                             fake["binary"]], capture_output=True, text=True, env={**os.environ, "PYTHONPATH": PYTHON_DIR})
+    assert result.returncode == 2
+    assert result.stderr.strip().splitlines() == [
+        "packlab: error: combine = 'cross': must be one of product, zip"]
+
+
+def test_runs_aggregates_and_skips_finished(tmp_path, fake):
+    spec = write_spec(tmp_path / "s.toml", SIMPLE)
+    out = tmp_path / "study"
+    outcome = studies.study(spec, out, workers=2, packlab=fake["binary"], quiet=True)
+    assert outcome["failed"] == 0 and outcome["ran"] == 6 and len(runs(fake)) == 6
+    rows = read_csv(out / "tasks.csv")
+    assert [r["value"] for r in rows] == ["1", "1", "1", "2", "2", "2"]
+    assert all(r["status"] == "done" and float(r["wall_seconds"]) > 0 for r in rows)
+    seeds = [int(r["seed"]) for r in rows]
+    assert seeds[:3] == seeds[3:] and len(set(seeds[:3])) == 3  # the same seeds at every point
+    for r in rows:
+        assert float(r["results.value"]) == float(r["value"]) + int(r["seed"]) % 7
+    summary = read_csv(out / "summary.csv")
+    assert [s["value"] for s in summary] == ["1", "2"]
+    values = [float(r["results.value"]) for r in rows[:3]]
+    mean = sum(values) / 3
+    assert float(summary[0]["results.value_mean"]) == pytest.approx(mean)
+    assert int(summary[0]["results.value_count"]) == 3
+    sd = (sum((v - mean) ** 2 for v in values) / 2) ** 0.5
+    assert float(summary[0]["results.value_sd"]) == pytest.approx(sd)
+    assert float(summary[0]["results.value_se"]) == pytest.approx(sd / 3**0.5)
+    # A rerun runs nothing and writes the same tables.
+    again = studies.study(spec, out, workers=2, packlab=fake["binary"], quiet=True)
+    assert again["ran"] == 0 and len(runs(fake)) == 6
+    assert read_csv(out / "tasks.csv") == rows
+
+
+def test_failed_task_recorded_others_run(tmp_path, fake):
+    spec = write_spec(tmp_path / "s.toml", SIMPLE.replace("sleep = 0.05", "sleep = 0.05\nfail-above = 1.5"))
+    out = tmp_path / "study"
+    outcome = studies.study(spec, out, workers=2, packlab=fake["binary"], quiet=True)
+    assert outcome["failed"] == 3 and len(runs(fake)) == 3
+    rows = read_csv(out / "tasks.csv")
+    for r in rows:
+        if r["value"] == "2":
+            assert r["status"] == "failed" and "exit code 2" in r["error"] and "too large" in r["error"]
+            assert r["results.value"] == ""
+        else:
+            assert r["status"] == "done"
+    failure = json.loads((out / "runs" / f"fake-{rows[-1]['task']}" / "study-failure.json").read_text())
+    assert failure["exit_code"] == 2 and "--value 2.0 is too large" in failure["stderr_tail"]
+    summary = read_csv(out / "summary.csv")
+    assert summary[1]["done"] == "0" and summary[1]["results.value_mean"] == ""
+    # The command line says so by its exit code, after writing the tables.
+    result = subprocess.run([sys.executable, "-m", "packlab.studies", spec, "--out", str(out), "--packlab",
+                             fake["binary"], "--quiet"], env={**os.environ, "PYTHONPATH": PYTHON_DIR})
+    assert result.returncode == 1
+
+
+def test_changed_spec_reruns_only_changed_tasks(tmp_path, fake):
+    spec = write_spec(tmp_path / "s.toml", SIMPLE)
+    out = tmp_path / "study"
+    studies.study(spec, out, workers=2, packlab=fake["binary"], quiet=True)
+    assert len(runs(fake)) == 6
+    write_spec(tmp_path / "s.toml", SIMPLE.replace("value = [1, 2]", "value = [1, 3]").replace(
+        "realizations = 3", "realizations = 4"))
+    outcome = studies.study(spec, out, workers=2, packlab=fake["binary"], quiet=True)
+    # value 1: one new realization; value 3: four new tasks; value 2 is no longer in the tables.
+    assert outcome["ran"] == 5 and len(runs(fake)) == 11
+    rows = read_csv(out / "tasks.csv")
+    assert sorted({r["value"] for r in rows}) == ["1", "3"] and len(rows) == 8
+
+
+def test_stages_chain_and_share_upstream(tmp_path, fake):
+    spec = write_spec(tmp_path / "s.toml", """\
+        realizations = 2
+        collect = ["gen.results.value", "results.value", "results.flag"]
+        [[stage]]
+        name = "gen"
+        command = "generate fake"
+        options = { value = 10 }
+        [[stage]]
+        name = "test"
+        command = "test fake"
+        args = ["{gen}/report.json"]
+        [sweep]
+        test.value = [1, 2]
+        test.flag = [true, false]
+        """)
+    out = tmp_path / "study"
+    outcome = studies.study(spec, out, workers=2, packlab=fake["binary"], quiet=True)
+    # 2 packings (one per seed) shared by 4 test points each: 2 + 8 runs.
+    assert outcome["failed"] == 0 and outcome["ran"] == 10
+    rows = read_csv(out / "tasks.csv")
+    assert len(rows) == 8
+    for r in rows:
+        assert float(r["results.value"]) == float(r["gen.results.value"]) + float(r["test.value"])
+        assert r["results.flag"] == r["test.flag"]  # true: --flag given; false: left out
+
+
+def _wait_for(condition, timeout=20.0):
+    deadline = time.monotonic() + timeout
+    while not condition():
+        assert time.monotonic() < deadline, "timed out"
+        time.sleep(0.02)
+
+
+def test_kill_9_and_resume_runs_nothing_twice(tmp_path, fake):
+    spec = write_spec(tmp_path / "s.toml", SIMPLE.replace("sleep = 0.05", "sleep = 0.4").replace(
+        "realizations = 3", "realizations = 4"))
+    out = tmp_path / "study"
+    command = [sys.executable, "-m", "packlab.studies", spec, "--out", str(out), "--workers", "2", "--packlab",
+               fake["binary"], "--quiet"]
+    env = {**os.environ, "PYTHONPATH": PYTHON_DIR}
+    runner = subprocess.Popen(command, env=env)
+    _wait_for(lambda: len(runs(fake)) >= 2)  # killed in the middle: some done, two running
+    time.sleep(0.1)
+    runner.send_signal(signal.SIGKILL)
+    runner.wait()
+    finished_before = len(runs(fake))
+    assert finished_before < 8
+    # Rerun at once: the orphaned children of the killed runner still hold their units' locks;
+    # the new runner waits for them instead of running them again.
+    assert subprocess.run(command, env=env).returncode == 0
+    completed = runs(fake)
+    assert len(completed) == 8 and len(set(completed)) == 8  # every task exactly once
+    assert all(r["status"] == "done" for r in read_csv(out / "tasks.csv"))
+
+
+def test_dask_cluster(tmp_path, fake):
+    pytest.importorskip("distributed")
+    import socket
+
+    with socket.socket() as s:
+        s.bind(("127.0.0.1", 0))
+        port = s.getsockname()[1]
+    address = f"tcp://127.0.0.1:{port}"
+    env = {**os.environ, "PYTHONPATH": PYTHON_DIR, "FAKE_MARKER": str(fake["marker"])}
+    logs = open(tmp_path / "dask.log", "w")
+    processes = [subprocess.Popen([sys.executable, "-m", "distributed.cli.dask_scheduler", "--host", "127.0.0.1",
+                                   "--port", str(port), "--no-dashboard"], env=env, stdout=logs, stderr=logs)]
+    try:
+        for _ in range(2):
+            processes.append(subprocess.Popen([sys.executable, "-m", "distributed.cli.dask_worker", address,
+                                               "--nthreads", "1", "--no-nanny", "--no-dashboard"],
+                                              env=env, stdout=logs, stderr=logs))
+        from distributed import Client
+
+        with Client(address, timeout="20s") as client:
+            client.wait_for_workers(2, timeout=30)
+        spec = write_spec(tmp_path / "s.toml", SIMPLE.replace("sleep = 0.05", "sleep = 0.05\nfail-above = 1.5"))
+        out = tmp_path / "study"
+        outcome = studies.study(spec, out, scheduler=address, packlab=fake["binary"], quiet=True)
+        assert outcome["ran"] == 3 and outcome["failed"] == 3
+        rows = read_csv(out / "tasks.csv")
+        assert [r["status"] for r in rows] == ["done"] * 3 + ["failed"] * 3
+        again = studies.study(spec, out, scheduler=address, packlab=fake["binary"], quiet=True)
+        assert again["ran"] == 0 and len(runs(fake)) == 3
+    finally:
+        for p in reversed(processes):
+            p.terminate()
+        for p in processes:
+            try:
+                p.wait(timeout=10)
+            except subprocess.TimeoutExpired:
+                p.kill()
+        logs.close()
+
+
+def test_quick_example_with_packlab(tmp_path):
+    binary = os.environ.get("PACKLAB_BINARY")
+    if not binary or not os.path.exists(binary):
+        pytest.skip("packlab binary not found (set PACKLAB_BINARY)")
+    out = tmp_path / "quick"
+    result = subprocess.run([binary, "study", os.path.join(REPO, "examples", "study", "quick.toml"), "--out", str(out),
+                             "--workers", "2"], capture_output=True, text=True)
+    assert result.returncode == 0, result.stderr
+    rows = read_csv(out / "tasks.csv")
+    assert len(rows) == 6 and all(r["status"] == "done" for r in rows)
+    summary = read_csv(out / "summary.csv")
+    assert len(summary) == 2 and all(int(s["done"]) == 3 for s in summary)
+    png = tmp_path / "study.png"
+    from packlab.plot import main as plot_main
+
+    field = [k for k in rows[0] if k.startswith("results.")][0]
+    sweep = list(rows[0])[0]
+    assert plot_main(["study", str(out), "--x", sweep, "--y", field, "--out", str(png)]) == 0
+    assert png.stat().st_size > 1000
+
+
+def test_plot_study(tmp_path, fake):
+    spec = write_spec(tmp_path / "s.toml", SIMPLE.replace("value = [1, 2]", "value = [1, 2, 4]"))
+    out = tmp_path / "study"
+    studies.study(spec, out, workers=2, packlab=fake["binary"], quiet=True)
+    from packlab.plot import main as plot_main
+    from packlab.plot.study import figure
+
+    png = tmp_path / "study.png"
+    assert plot_main(["study", str(out), "--x", "value", "--y", "results.value", "--out", str(png)]) == 0
+    assert png.stat().st_size > 1000
+    line = figure(str(out), "value", "results.value").axes[0].lines[0]
+    assert list(line.get_xdata()) == [1.0, 2.0, 4.0]
+    with pytest.raises(SystemExit):  # a field that was not collected: argparse's error, exit 2
+        plot_main(["study", str(out), "--x", "value", "--y", "results.nothing", "--out", str(png)])
+
+
+def test_placeholder_variables():
+    table = {"command": "generate vem", "options": {"config": "{spec_dir}/k{knv}.toml", "voids": 5},
+             "sweep": {"knv": ["1e1", "1e-1"], "voids": [5, 6]}, "seeds": [3]}
+    units, tasks = studies.plan(studies.load_spec(table, spec_dir="/specs"), "/tmp/x")
+    argv = units[tasks[0]["units"][0]]["argv"]
+    assert argv[:8] == ["generate", "vem", "--config", "/specs/k1e1.toml", "--voids", "5", "--seed", "3"]
+    assert "--knv" not in argv and len(units) == 4
+    # The key does not depend on where the SPEC's folder is.
+    moved, _ = studies.plan(studies.load_spec(table, spec_dir="/other"), "/tmp/x")
+    assert set(moved) == set(units)
