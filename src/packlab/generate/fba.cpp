@@ -226,6 +226,8 @@ void FbaRun::iterate(const std::function<void(const FbaStatus&)>& progress) {
     for (int a = 0; a < 3; ++a)
       if (!box_.periodic[a]) pos_[i][a] = std::clamp(pos_[i][a], box_.lo[a] + target_[i], box_.hi()[a] - target_[i]);
   }
+  // Contraction (fba.hpp): proportional to the gap between nominal and true scale, never below
+  // the target. With the default rate the true scale catches up before the target is reached.
   s_out_ = std::max(s_t_, s_out_ - params_.shrink_rate * (s_out_ - s_in));
   ++iteration_;
 }

@@ -9,8 +9,8 @@
 //  - Start: uniform random centres (along open axes inside [lo + R_i, hi - R_i]).
 //  - Two scales, as in the classic FBA: the outer ("nominal") scale s_out, from which the
 //    pushing forces come, starts where the spheres would fill the box (volume fraction 1; at
-//    most 1.5 s_t, for dilute sets such as pores) and shrinks; the inner ("true") scale s_in = min_pairs d_ij / (rho_i + rho_j) is the largest
-//    scale at which the current centres carry no overlap.
+//    most 1.5 s_t, for dilute sets such as pores) and shrinks; the inner ("true") scale s_in = min_pairs d_ij / (rho_i
+//    + rho_j) is the largest scale at which the current centres carry no overlap.
 //  - Iteration: every pair overlapping at s_out, h_ij = s_out (rho_i + rho_j) - d_ij > 0, pushes
 //    i and j apart along their axis by step x h_ij shared in inverse proportion to the sphere
 //    volumes (i moves by step h_ij rho_j^3 / (rho_i^3 + rho_j^3)). All displacements of one
@@ -18,7 +18,15 @@
 //    the thread count. One particle moves at most max_move x R_i per iteration. Along open axes
 //    a wall keeps each centre in [lo + R_i, hi - R_i] (spheres wholly inside the box).
 //  - Then s_out <- max(s_t, s_out - shrink_rate (s_out - s_in)): the nominal diameters shrink
-//    towards the true ones, never below the target.
+//    towards the true ones, never below the target. The rate is the schedule of the classic FBA
+//    (Mościński et al. 1989, Bezrukov et al. 2002: the nominal diameter contracts slowly, so the
+//    spheres rearrange while it does, and the run ends when the true diameter has caught up).
+//    With the default 0.001 the true scale reaches the target while the nominal one is still
+//    above it (a few 1e-3 for equal spheres at porosity 0.38): no iteration is spent at the
+//    target. A fast contraction (0.01, the first default) quenches the spheres at the target
+//    into a jammed, overlapping state (~2 overlapping pairs per sphere at 1e-2 overlap) whose
+//    last overlaps creep out over 10^4-10^5 iterations, or never near walls (measured:
+//    bench_fba seeds, docs/opal-build.md); rates above ~0.003 risk that quench.
 //  - Stop criterion (documented, checked): the maximum relative overlap at the target radii,
 //    1 - s_in / s_t = max_pairs (R_i + R_j - d_ij) / (R_i + R_j), is <= tolerance (target
 //    reached); or max_iterations (reported, status max_iterations).
@@ -42,14 +50,14 @@
 namespace packlab::generate {
 
 struct FbaParams {
-  double target_porosity = 0.38;   // 1 - sum of sphere volumes / box volume, in [0.30, 1)
-  double tolerance = 1e-3;         // accepted max relative overlap at the end, in (0, 0.1]
-  double shrink_rate = 0.01;       // fraction of (s_out - s_in) removed per iteration, in (0, 1]
-  double step = 1.0;               // fraction of each pair's overlap removed per iteration, (0, 1]
-  double max_move = 0.5;           // per-iteration displacement cap in target radii, (0, 2]
-  long max_iterations = 100000;    // >= 1
+  double target_porosity = 0.38;  // 1 - sum of sphere volumes / box volume, in [0.30, 1)
+  double tolerance = 1e-3;        // accepted max relative overlap at the end, in (0, 0.1]
+  double shrink_rate = 0.001;     // fraction of (s_out - s_in) removed per iteration, in (0, 1]
+  double step = 1.0;              // fraction of each pair's overlap removed per iteration, (0, 1]
+  double max_move = 0.5;          // per-iteration displacement cap in target radii, (0, 2]
+  long max_iterations = 100000;   // >= 1
   int threads = 1;
-  void validate() const;           // InputError naming key, value and range
+  void validate() const;  // InputError naming key, value and range
 };
 
 enum class FbaStop { target_reached, max_iterations };
@@ -57,17 +65,17 @@ std::string fba_stop_name(FbaStop stop);
 
 struct FbaStatus {
   long iteration = 0;
-  double outer_scale = 0;       // s_out / s_t
-  double inner_scale = 0;       // s_in / s_t (1 - max relative overlap at the target radii)
-  double max_overlap = 0;       // max_pairs (R_i + R_j - d_ij)/(R_i + R_j) at the target radii
-  double porosity = 0;          // target porosity (the radii are the target radii)
+  double outer_scale = 0;  // s_out / s_t
+  double inner_scale = 0;  // s_in / s_t (1 - max relative overlap at the target radii)
+  double max_overlap = 0;  // max_pairs (R_i + R_j - d_ij)/(R_i + R_j) at the target radii
+  double porosity = 0;     // target porosity (the radii are the target radii)
   double seconds = 0;
-  long overlapping_pairs = 0;   // pairs overlapping at s_out in this iteration
+  long overlapping_pairs = 0;  // pairs overlapping at s_out in this iteration
   FbaStop stop = FbaStop::max_iterations;
 };
 
 struct FbaResult {
-  Packing packing;               // radii R_i, type structural, box as given
+  Packing packing;  // radii R_i, type structural, box as given
   FbaStatus status;
   double verified_max_overlap = 0;  // independent pair search on the result
   std::vector<FbaStatus> history;   // every `history_every` iterations (and the last)

@@ -390,6 +390,10 @@ void LsSimulation::start_block() {
     std::vector<Body> b2(body_.size());
     std::vector<int> c2(body_.size()), id2(body_.size());
     std::vector<std::uint32_t> n2(body_.size());
+    // spatial_order's keys (8 B) and stable-sort buffer (up to 4 B) per particle are gone by
+    // now; counted all the same, as they were alive beside everything else.
+    note_memory(body_.size() *
+                (sizeof(Vec3) + sizeof(int) + 12 + sizeof(Body) + 2 * sizeof(int) + sizeof(std::uint32_t)));
     for (std::size_t k = 0; k < order.size(); ++k) {
       b2[k] = body_[order[k]];
       c2[k] = cls_[order[k]];
@@ -407,6 +411,7 @@ void LsSimulation::start_block() {
   for (auto& e : ev_) e = Event{inf, -2, 0};
   for (int i = 0; i < static_cast<int>(body_.size()); ++i) predict(i);
   heap_build();
+  note_memory(0);
   virial_ = 0.0;
 }
 
@@ -477,6 +482,7 @@ bool LsSimulation::run_block() {
     }
   }
   sync_all(now);
+  note_memory(0);
   {  // adapt the skin: transfers cost a cell search, large lists cost every prediction
     const double c = static_cast<double>(status_.collisions - collisions0);
     const double t = static_cast<double>(status_.transfers - transfers0);

@@ -75,14 +75,14 @@ std::string ls_stop_name(LsStop stop);
 struct LsStatus {
   long blocks = 0;
   long long collisions = 0;
-  long long transfers = 0;       // neighbour-list transfers (a sphere reached its bounding sphere)
-  long long stale = 0;           // events discarded by the invalidation counters
+  long long transfers = 0;  // neighbour-list transfers (a sphere reached its bounding sphere)
+  long long stale = 0;      // events discarded by the invalidation counters
   double volume_fraction = 0.0;
-  double scale = 0.0;            // s
-  double reduced_pressure = 1.0; // of the last block
-  double time = 0.0;             // simulated time since the start
-  double seconds = 0.0;          // wall time
-  double cpu_seconds = 0.0;      // processor time of this process (= wall time on an idle core)
+  double scale = 0.0;             // s
+  double reduced_pressure = 1.0;  // of the last block
+  double time = 0.0;              // simulated time since the start
+  double seconds = 0.0;           // wall time
+  double cpu_seconds = 0.0;       // processor time of this process (= wall time on an idle core)
   LsStop stop = LsStop::max_blocks;
   long long events() const { return collisions + transfers; }  // discarded (stale) events not counted
 };
@@ -116,6 +116,10 @@ class LsSimulation {
   double overlap_correction() const { return overlap_correction_; }
   // Replaces positions (e.g. after shaking); same particles, same order as packing().
   void set_positions(const std::vector<Vec3>& position);
+  // Bytes held by the simulation's arrays now (their capacities), and the most they held at any
+  // time so far, the temporaries of a block's start (re-sort, list build) included.
+  std::size_t memory_bytes() const;
+  std::size_t peak_memory_bytes() const { return peak_bytes_; }
 
   // Collision time of two spheres, eq. (8): smallest t >= 0 with |dx + dv t| = sigma + sdot t,
   // where dx, dv are the separation and relative velocity; +inf when they never touch.
@@ -126,10 +130,10 @@ class LsSimulation {
 
  private:
   struct Body {  // one cache line
-    Vec3 x;       // position at time t (box coordinates relative to box.lo)
-    double t;     // time stamp
+    Vec3 x;      // position at time t (box coordinates relative to box.lo)
+    double t;    // time stamp
     Vec3 v;
-    double rho;   // radius at s = 1
+    double rho;  // radius at s = 1
   };
   struct Event {
     double time;
@@ -167,22 +171,22 @@ class LsSimulation {
   Box box_;
   Vec3 origin_;
   int nclass_ = 1;
-  std::vector<double> class_rho_;        // radius at s = 1 per class
-  std::vector<double> reach_;            // nclass x nclass: largest bounding-sphere reach this block
+  std::vector<double> class_rho_;  // radius at s = 1 per class
+  std::vector<double> reach_;      // nclass x nclass: largest bounding-sphere reach this block
   std::vector<Body> body_;
   std::vector<int> cls_, id_;
   std::vector<std::uint32_t> count_;
   std::vector<Event> ev_;
   std::vector<int> cell_, slot_;
   std::vector<std::array<int, 3>> cc_;
-  std::vector<Vec3> center_;             // bounding-sphere centres
-  std::vector<double> bound_;            // bounding-sphere radii
-  std::vector<double> skin_;             // per class: bounding radius - radius at build
-  std::vector<double> bound_cap_;        // per class: largest bounding radius this block
-  std::vector<int> list_cap_;            // per class
-  std::vector<std::size_t> list_base_;   // per particle
-  std::vector<int> list_fill_;           // per particle
-  std::vector<std::uint32_t> list_;      // entries j * 32 + image code
+  std::vector<Vec3> center_;            // bounding-sphere centres
+  std::vector<double> bound_;           // bounding-sphere radii
+  std::vector<double> skin_;            // per class: bounding radius - radius at build
+  std::vector<double> bound_cap_;       // per class: largest bounding radius this block
+  std::vector<int> list_cap_;           // per class
+  std::vector<std::size_t> list_base_;  // per particle
+  std::vector<int> list_fill_;          // per particle
+  std::vector<std::uint32_t> list_;     // entries j * 32 + image code
   std::array<Vec3, 27> offset_{};
   std::vector<Grid> grid_;
   std::vector<double> hkey_;
@@ -195,6 +199,8 @@ class LsSimulation {
   LsStatus status_;
   bool stopped_ = false;  // a stop criterion other than max_blocks was met
   double overlap_correction_ = 0.0;
+  std::size_t peak_bytes_ = 0;
+  void note_memory(std::size_t temporary_bytes);  // peak_bytes_ = max(peak, now + temporaries)
 };
 
 // Random points in a periodic cube and their classes for `particles` spheres of the given
@@ -206,7 +212,6 @@ struct LsStart {
   std::vector<double> unit_radius;  // fill the box at s = 1
   std::vector<int> klass;
 };
-LsStart make_ls_start(long particles, const SizeClasses& classes, double radius, double volume_fraction,
-                      Random& rng);
+LsStart make_ls_start(long particles, const SizeClasses& classes, double radius, double volume_fraction, Random& rng);
 
 }  // namespace packlab::generate

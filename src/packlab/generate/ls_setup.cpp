@@ -33,9 +33,10 @@ LsSimulation::LsSimulation(const Packing& start, const LsParams& params, Random&
   start.validate();
   for (int a = 0; a < 3; ++a)
     if (!start.box.periodic[a])
-      fail_input(fmt::format("box periodic along {} = false: Lubachevsky-Stillinger growth needs a box periodic "
-                             "on every axis",
-                             "xyz"[a]));
+      fail_input(
+          fmt::format("box periodic along {} = false: Lubachevsky-Stillinger growth needs a box periodic "
+                      "on every axis",
+                      "xyz"[a]));
   if (start.size() < 2) fail_input("particles = " + std::to_string(start.size()) + ": must be >= 2");
   const double ratio = min_contact_ratio(start);
   require(ratio >= 1.0 - 1e-9, "min contact ratio d/(r_i+r_j)", ratio,
@@ -65,9 +66,10 @@ LsSimulation::LsSimulation(const Box& box, std::vector<Vec3> points, std::vector
   params_.validate();
   for (int a = 0; a < 3; ++a)
     if (!box.periodic[a])
-      fail_input(fmt::format("box periodic along {} = false: Lubachevsky-Stillinger growth needs a box periodic "
-                             "on every axis",
-                             "xyz"[a]));
+      fail_input(
+          fmt::format("box periodic along {} = false: Lubachevsky-Stillinger growth needs a box periodic "
+                      "on every axis",
+                      "xyz"[a]));
   if (points.size() < 2) fail_input("particles = " + std::to_string(points.size()) + ": must be >= 2");
   if (unit_radius.size() != points.size()) throw std::logic_error("LsSimulation: radius and point counts differ");
   init(box, std::move(points), std::move(unit_radius), 0.0, rng);
@@ -131,9 +133,10 @@ void LsSimulation::init(const Box& box, std::vector<Vec3> points, std::vector<do
   const double s_final = std::cbrt(phi_final / phi1_);
   const double l_min = std::min({box_.length.x, box_.length.y, box_.length.z});
   if (4.0 * class_rho_[0] * s_final >= l_min)
-    fail_input(fmt::format("box edge = {:g} m is less than two largest diameters ({:g} m) at volume fraction {:g}; "
-                           "use more particles",
-                           l_min, 4.0 * class_rho_[0] * s_final, phi_final));
+    fail_input(
+        fmt::format("box edge = {:g} m is less than two largest diameters ({:g} m) at volume fraction {:g}; "
+                    "use more particles",
+                    l_min, 4.0 * class_rho_[0] * s_final, phi_final));
   status_ = LsStatus{};
   status_.scale = s0_;
   status_.volume_fraction = phi1_ * s0_ * s0_ * s0_;
@@ -196,6 +199,27 @@ LsSimulation LsSimulation::load_state(std::istream& in) {
   return sim;
 }
 
+namespace {
+template <class T>
+std::size_t bytes_of(const std::vector<T>& v) {
+  return v.capacity() * sizeof(T);
+}
+}  // namespace
+
+std::size_t LsSimulation::memory_bytes() const {
+  std::size_t b = bytes_of(class_rho_) + bytes_of(reach_) + bytes_of(body_) + bytes_of(cls_) + bytes_of(id_) +
+                  bytes_of(count_) + bytes_of(ev_) + bytes_of(cell_) + bytes_of(slot_) + bytes_of(cc_) +
+                  bytes_of(center_) + bytes_of(bound_) + bytes_of(skin_) + bytes_of(bound_cap_) + bytes_of(list_cap_) +
+                  bytes_of(list_base_) + bytes_of(list_fill_) + bytes_of(list_) + bytes_of(hkey_) + bytes_of(hid_) +
+                  bytes_of(hpos_);
+  for (const Grid& g : grid_) b += bytes_of(g.slots) + bytes_of(g.fill);
+  return b;
+}
+
+void LsSimulation::note_memory(std::size_t temporary_bytes) {
+  peak_bytes_ = std::max(peak_bytes_, memory_bytes() + temporary_bytes);
+}
+
 void LsSimulation::set_params(const LsParams& params) {
   params.validate();
   params_ = params;
@@ -224,8 +248,8 @@ void LsSimulation::build_grids() {
   // Skins relative to the current diameter, at least that of s = 0.2 (growth from points).
   const double l_min0 = std::min({box_.length.x, box_.length.y, box_.length.z});
   // Keep 2 x (largest bounding radius) within a quarter box.
-  skin_rel_ = std::min(skin_rel_, std::max(0.005, (0.2 * l_min0 - class_rho_[0] * s_want) /
-                                                      (2.0 * class_rho_[0] * std::max(s0_, 0.2))));
+  skin_rel_ = std::min(
+      skin_rel_, std::max(0.005, (0.2 * l_min0 - class_rho_[0] * s_want) / (2.0 * class_rho_[0] * std::max(s0_, 0.2))));
   for (int k = 0; k < nclass_; ++k) skin_[k] = skin_rel_ * 2.0 * class_rho_[k] * std::max(s0_, 0.2);
   double s_cap = inf;
   for (int k = 0; k < nclass_; ++k) {
@@ -253,8 +277,7 @@ void LsSimulation::build_grids() {
   for (int k = 0; k < nclass_; ++k) bound_cap_[k] = class_rho_[k] * std::max(s_cap, s0_) + skin_[k];
   reach_.assign(static_cast<std::size_t>(nclass_) * nclass_, 0.0);
   for (int k = 0; k < nclass_; ++k)
-    for (int m = 0; m < nclass_; ++m)
-      reach_[k * nclass_ + m] = (bound_cap_[k] + bound_cap_[m]) * (1.0 + cell_margin);
+    for (int m = 0; m < nclass_; ++m) reach_[k * nclass_ + m] = (bound_cap_[k] + bound_cap_[m]) * (1.0 + cell_margin);
   // Fill.
   std::vector<int> occupancy;
   for (int k = 0; k < nclass_; ++k) {
@@ -317,8 +340,7 @@ Packing LsSimulation::packing() {
 
 // ---------------------------------------------------------------------------------------------
 
-LsStart make_ls_start(long particles, const SizeClasses& classes, double radius, double volume_fraction,
-                      Random& rng) {
+LsStart make_ls_start(long particles, const SizeClasses& classes, double radius, double volume_fraction, Random& rng) {
   classes.validate();
   require(particles >= 2 && particles <= 100'000'000, "particles", static_cast<double>(particles), "in [2, 1e8]");
   // The event-driven state (positions, velocities, event calendar, cells, neighbour lists)
