@@ -14,8 +14,8 @@
 //  z) scaled to porosity 0.38, seeds 1..K; per seed one line `fba_seed ...` with the iteration
 //  counts, CPU time, verified overlap and the structure (contacts per particle within 1 % of
 //  contact, g(r) at its first peak and second-peak split), then their means and scatter.
-//  `classic` runs the first version's contraction rate (0.01: see FbaParams::shrink_rate) for
-//  the before/after comparison in one run.
+//  `classic` runs the first version (no momentum in the overlap removal: see FbaParams) for the
+//  before/after comparison in one run.
 #include <fmt/format.h>
 #include <sys/resource.h>
 
@@ -84,7 +84,7 @@ int seeds_mode(long n, int k, bool classic) {
   box.length = aspect * f;
   box.periodic = {true, true, false};
   FbaParams fp;
-  if (classic) fp.shrink_rate = 0.01;  // the first default (fba.hpp)
+  if (classic) fp.momentum = 0.0;  // the first version (fba.hpp)
   std::vector<Sample> all;
   for (int seed = 1; seed <= k; ++seed) {
     Random rng(static_cast<std::uint64_t>(seed));
@@ -118,7 +118,7 @@ int seeds_mode(long n, int k, bool classic) {
         "fba_seed schedule={} N={} seed={} stop={} iterations={} contraction_iterations={} "
         "removal_iterations={} cpu_s={:.2f} porosity={:.6f} verified_max_overlap={:.4g} contacts_per_particle={:.4f} "
         "g_first_peak={:.3f} g_2sqrt3={:.3f} g_4={:.3f}\n",
-        classic ? "shrink_0.01" : "shrink_0.001", n, seed, fba_stop_name(r.status.stop), s.iterations, ph.contraction,
+        classic ? "momentum_0" : "momentum_0.9", n, seed, fba_stop_name(r.status.stop), s.iterations, ph.contraction,
         ph.removal, s.cpu, s.porosity, s.overlap, s.contacts, s.g_peak, s.g_at_sqrt3, s.g_at_2);
     std::fflush(stdout);
     all.push_back(s);
@@ -136,7 +136,7 @@ int seeds_mode(long n, int k, bool classic) {
       "fba_summary schedule={} N={} seeds={} iterations_mean={:.0f} removal_iterations_mean={:.0f} "
       "cpu_s_mean={:.2f} contacts_per_particle={:.4f}+-{:.4f} g_first_peak={:.3f}+-{:.3f} "
       "g_2sqrt3={:.3f}+-{:.3f} g_4={:.3f}+-{:.3f} max_verified_overlap={:.4g}\n",
-      classic ? "shrink_0.01" : "shrink_0.001", n, k, mi, mr, mean_of(all, &Sample::cpu),
+      classic ? "momentum_0" : "momentum_0.9", n, k, mi, mr, mean_of(all, &Sample::cpu),
       mean_of(all, &Sample::contacts), sd_of(all, &Sample::contacts), mean_of(all, &Sample::g_peak),
       sd_of(all, &Sample::g_peak), mean_of(all, &Sample::g_at_sqrt3), sd_of(all, &Sample::g_at_sqrt3),
       mean_of(all, &Sample::g_at_2), sd_of(all, &Sample::g_at_2),

@@ -18,10 +18,10 @@
 //  - Collision times: the smaller positive root of |dx + dv t| = sigma + sigma_dot t (eq. 8),
 //    for the periodic image given by the cell stencil.
 //  - Event calendar: one pending event per particle (its earliest collision or neighbour-list
-//    transfer) in an indexed binary heap; a predicted collision carries its partner's collision
-//    counter and is discarded when the partner's velocity changed since (per-particle
-//    invalidation). Particles are advanced lazily (each keeps its own time stamp). A collision
-//    later than the partner's own next event is left to the partner (it predicts again then).
+//    transfer) in an indexed binary heap (the heap holds the event times); a predicted collision carries its partner's
+//    collision counter and is discarded when the partner's velocity changed since (per-particle invalidation).
+//    Particles are advanced lazily (each keeps its own time stamp). A collision later than the partner's own next event
+//    is left to the partner (it predicts again then).
 //  - Neighbours (Donev, Torquato & Stillinger 2005): each sphere has a bounding sphere, its
 //    radius plus `neighbor_skin` x its diameter; spheres are neighbours when their bounding
 //    spheres overlap, and only neighbours are tested for collisions. When a sphere reaches its
@@ -34,6 +34,10 @@
 //    time, velocities are rescaled to kT (the boost heats the system), the reduced pressure
 //    p = PV/(NkT) of the block is measured from the collision virial (growth part excluded),
 //    particles are re-sorted along a Morton curve and all events are predicted anew.
+//  - Memory (bench_ls prints it per particle): a particle is one cache line with its class and
+//    collision counter; cells link their members (a head per cell, a next per particle); the
+//    neighbour lists are counted, then laid out with 1 + 1/8 spare entries each, and are freed
+//    while the particles are re-sorted.
 //  - Stops at the target volume fraction (exactly: the last block ends at the time where
 //    s^3 = phi), or at jamming: reduced pressure >= max_reduced_pressure (1e12 by default, the
 //    criterion of Skoge–Donev and PackingGeneration), or after max_blocks blocks.
@@ -43,10 +47,12 @@
 
 #include <array>
 #include <cstdint>
+#include <cstdlib>
 #include <functional>
 #include <istream>
 #include <ostream>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "packlab/core/packing.hpp"
@@ -129,23 +135,59 @@ class LsSimulation {
   static void collide(Vec3& vi, Vec3& vj, const Vec3& n, double sigma_dot, double boost);
 
  private:
-  struct Body {  // one cache line
-    Vec3 x;      // position at time t (box coordinates relative to box.lo)
-    double t;    // time stamp
+  struct alignas(64) Body {  // one cache line (aligned: a particle is read with one line, not two)
+    Vec3 x;                  // position at time t (box coordinates relative to box.lo)
+    double t;                // time stamp
     Vec3 v;
-    double rho;  // radius at s = 1
+    std::uint32_t count;  // collisions so far (invalidates the partners' predictions)
+    int cls;              // size class: radius at s = 1 is class_rho_[cls]
   };
-  struct Event {
-    double time;
+  struct SavedBody {  // the checkpoint's layout of a particle (radius at s = 1 in place of class and count)
+    Vec3 x;
+    double t;
+    Vec3 v;
+    double rho;
+  };
+  struct Event {          // the time is the calendar's key (event_time)
     int partner;          // >= 0 collision partner; -1 transfer; -2 none
     std::uint32_t count;  // partner's collision counter at prediction
+  };
+  // Neighbour-list entries in one malloc'd block grown by realloc: glibc moves the pages of a
+  // large block instead of copying it, so the pool never exists twice while it grows.
+  class EntryPool {
+   public:
+    EntryPool() = default;
+    EntryPool(const EntryPool& o) { *this = o; }
+    EntryPool(EntryPool&& o) noexcept { swap(o); }
+    EntryPool& operator=(const EntryPool& o);
+    EntryPool& operator=(EntryPool&& o) noexcept {
+      swap(o);
+      return *this;
+    }
+    ~EntryPool() { std::free(p_); }
+    void swap(EntryPool& o) noexcept {
+      std::swap(p_, o.p_);
+      std::swap(n_, o.n_);
+    }
+    void resize(std::size_t n);  // keeps the first min(n, size()) entries; new ones unset
+    void release() {
+      std::free(p_);
+      p_ = nullptr;
+      n_ = 0;
+    }
+    std::uint32_t* data() { return p_; }
+    const std::uint32_t* data() const { return p_; }
+    std::size_t size() const { return n_; }
+    std::uint32_t& operator[](std::size_t k) { return p_[k]; }
+
+   private:
+    std::uint32_t* p_ = nullptr;
+    std::size_t n_ = 0;
   };
   struct Grid {
     int n[3] = {1, 1, 1};
     double h[3] = {1, 1, 1};
-    int cap = 8;
-    std::vector<int> slots;  // n cells x cap
-    std::vector<int> fill;   // per cell
+    std::vector<int> head;  // per cell: first member (-1: empty); next_ links the rest
   };
 
   LsSimulation() = default;
@@ -158,14 +200,20 @@ class LsSimulation {
   void insert(int i);
   void remove(int i);
   void build_lists();
+  template <class Visit>
+  void scan_neighbors(int i, bool only_greater, Visit&& visit);
   void add_neighbor(int i, std::uint32_t entry);
+  void relocate_list(int i);
   void drop_neighbor(int i, std::uint32_t entry);
   void find_neighbors(int i, bool only_greater);
   void transfer(int i);
   void predict(int i);
-  void heap_update(int i);
+  void heap_update(int i, double key);
   void heap_build();
+  // Time of i's pending event (the calendar's key; by particle while a block starts).
+  double event_time(int j) const { return hkey_[static_cast<std::size_t>(hpos_[j])]; }
   double s_at(double t) const { return s0_ + params_.growth_rate * t; }
+  double rho_of(const Body& b) const { return class_rho_[b.cls]; }
 
   LsParams params_;
   Box box_;
@@ -174,19 +222,19 @@ class LsSimulation {
   std::vector<double> class_rho_;  // radius at s = 1 per class
   std::vector<double> reach_;      // nclass x nclass: largest bounding-sphere reach this block
   std::vector<Body> body_;
-  std::vector<int> cls_, id_;
-  std::vector<std::uint32_t> count_;
+  std::vector<int> id_;  // original index
   std::vector<Event> ev_;
-  std::vector<int> cell_, slot_;
-  std::vector<std::array<int, 3>> cc_;
-  std::vector<Vec3> center_;            // bounding-sphere centres
-  std::vector<double> bound_;           // bounding-sphere radii
-  std::vector<double> skin_;            // per class: bounding radius - radius at build
-  std::vector<double> bound_cap_;       // per class: largest bounding radius this block
-  std::vector<int> list_cap_;           // per class
-  std::vector<std::size_t> list_base_;  // per particle
-  std::vector<int> list_fill_;          // per particle
-  std::vector<std::uint32_t> list_;     // entries j * 32 + image code
+  std::vector<int> cell_, next_;   // cell of i in its class grid, next member of that cell
+  std::vector<Vec3> center_;       // bounding-sphere centres
+  std::vector<double> bound_;      // bounding-sphere radii
+  std::vector<double> skin_;       // per class: bounding radius - radius at build
+  std::vector<double> bound_cap_;  // per class: largest bounding radius this block
+  // Neighbour lists: one pool, each particle a segment [base, base + cap) of which fill are
+  // used; a full segment moves to the pool's end with twice the room (list_end_: first free).
+  std::vector<std::uint32_t> list_base_;
+  std::vector<std::uint16_t> list_fill_, list_cap_;
+  EntryPool list_;  // entries j * 32 + image code
+  std::size_t list_end_ = 0;
   std::array<Vec3, 27> offset_{};
   std::vector<Grid> grid_;
   std::vector<double> hkey_;
