@@ -349,9 +349,10 @@ Packing LsSimulation::packing() {
 LsStart make_ls_start(long particles, const SizeClasses& classes, double radius, double volume_fraction, Random& rng) {
   classes.validate();
   require(particles >= 2 && particles <= 100'000'000, "particles", static_cast<double>(particles), "in [2, 1e8]");
-  // The event-driven state (positions, velocities, event calendar, cells, neighbour lists)
-  // at its peak, measured by bench_ls (peak_bytes_per_particle) with some margin.
-  require_memory("particles", static_cast<double>(particles), static_cast<double>(particles), 300.0);
+  // The process at its peak: the event-driven state (positions, velocities, event calendar,
+  // cells, neighbour lists; ~200 B) with the start points and the packing out and its check,
+  // measured at 390 B per sphere (bench_ls 1000000 3 0.6, peak_rss_per_particle).
+  require_memory("particles", static_cast<double>(particles), static_cast<double>(particles), 400.0);
   require(radius > 0.0 && std::isfinite(radius), "radius", radius, "> 0 m");
   require(volume_fraction > 0.0 && volume_fraction < 1.0, "volume_fraction", volume_fraction, "in (0, 1)");
   const std::vector<long> count = classes.counts(particles);
