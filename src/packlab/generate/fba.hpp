@@ -28,9 +28,10 @@
 //    x_k - a grad f(x_k) + b (x_k - x_{k-1})): once s_out is at the target, each sphere's move
 //    adds `momentum` times its previous move (what it actually moved: a wall stops it). Along
 //    the flat directions of the jammed landscape the moves add up to 1/(1 - b) times the plain
-//    step; the packing the run ends in is of the same kind (contacts and g(r) within the
-//    scatter of realizations, bench_fba seeds / docs/opal-build.md) in ~12x fewer iterations
-//    at b = 0.9. momentum = 0 is the plain first version, bit for bit. (A slower contraction,
+//    step; the packing the run ends in is of the same kind (contacts, g(r)'s first peak and
+//    g(2 sqrt3 a) within the scatter of realizations, g(4 a) 0.05 lower: bench_fba seeds,
+//    docs/opal-build.md) in 14x fewer iterations at b = 0.9. momentum = 0 is the plain first
+//    version, bit for bit. (A slower contraction,
 //    shrink_rate 0.001, avoids the jam altogether in ~700 iterations but ends in another kind
 //    of packing: 5.45 instead of 6.38 contacts within 1 % per sphere.)
 //  - Stop criterion (documented, checked): the maximum relative overlap at the target radii,
