@@ -44,19 +44,25 @@ run bench_micro --benchmark_min_time=0.2
 run bench_neighbor 8000 2000 0.4 200 1   # neighbour-list build, 10,000 particles (VEM stage I)
 run bench_neighbor 8000 2000 0.4 200 2
 run bench_ls 10000 0.04          # LS to jamming, 10^4 monodisperse (PackingGeneration: 87 s at rate 1e-2)
-run bench_ls 10000 3             # fast compression (PackingGeneration: 22.7 s at rate 1e-1)
+if [ "$quick" = 1 ]; then
+  run bench_ls 10000 3           # fast compression (PackingGeneration: 22.7 s at rate 1e-1)
+fi
 run bench_ls 10000 0.015 0.6 0.313 0.333   # bimodal case of the paper to c = 0.6
 if [ "$quick" = 1 ]; then
   run bench_vem 1 8000 2000 0.4 20          # Fig. 1 case, first 20 void cycles (rates)
 else
-  run bench_ls 100000 3                     # 10^5 monodisperse (PackingGeneration: 555 s)
+  # 10^4 and 10^5 monodisperse at G = 3 in one run: CPU time ratio (issue #14: <= 13, N log N),
+  # bytes per particle (PackingGeneration: 22.7 s and 555 s at rate 1e-1)
+  run bench_ls scaling 10000 100000 3
   run bench_vem 2                           # Fig. 1 case end to end on 2 threads (7-9 minutes)
 fi
 # Oscillatory shear: one orientation of the N = 8000 shear case (doh §2.4), contact bonds.
 run bench_shear "$ROOT/examples/shear/data/vem_ns8000_nv2000.xyz" 1 $([ "$quick" = 1 ] && echo "2000 2" || echo "10000 10")
 # Inverse opals: FBA + opal builder (~49k particles, pore/particle 10), then compression of a
 # ~54,000-particle FCC opal: particle-steps/s, bond-steps/s, bytes per particle and per bond.
-run bench_fba 10
+run bench_fba 10                   # prints the iterations per phase (contraction, removal at the target)
+[ "$quick" = 1 ] || run bench_fba seeds 10000 2 classic   # 10^4 spheres, first version (no momentum)
+[ "$quick" = 1 ] || run bench_fba seeds 10000 2           # ... and now: iterations, contacts, g(r)
 if [ "$quick" = 1 ]; then run bench_compress 1 - 1 500; else run bench_compress 1; fi
 # The quasi-static solver (docs/static-solver.md): E of the same ~54,000-particle opal from one
 # solve, and G' in six orientations of the N = 8000 shear structure.

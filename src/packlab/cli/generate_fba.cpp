@@ -1,6 +1,7 @@
 // packlab generate fba [--config FILE.toml] (--particles N [--aspect 1,1,1] | --box LX,LY,LZ) [--diameter D]
 //   [--porosity 0.38] [--sizes 1,0.5 (--number-fractions ... | --volume-fractions ...)] [--periodic xy]
-//   [--tolerance 1e-3] [--shrink-rate 0.01] [--step 1] [--max-iterations N] [--history-every K] [--seed S]
+//   [--tolerance 1e-3] [--shrink-rate 0.01] [--momentum 0.9] [--step 1] [--max-iterations N] [--history-every K]
+//   [--seed S]
 //   [--threads T] [--checkpoint-seconds S] --out DIR
 // packlab generate fba --resume DIR [--threads T]
 // Force-biased algorithm (generate/fba.hpp, bpm-inverse-opals §2.1): dense random packing to a
@@ -98,6 +99,7 @@ void add_generate_fba(CLI::App& generate) {
                                 {"tolerance", o.fba.tolerance},
                                 {"shrink_rate", o.fba.shrink_rate},
                                 {"step", o.fba.step},
+                                {"momentum", o.fba.momentum},
                                 {"max_move", o.fba.max_move},
                                 {"max_iterations", o.fba.max_iterations},
                                 {"threads", o.fba.threads},

@@ -154,6 +154,7 @@ void FbaRun::setup() {
   }
   outer_.resize(n);
   disp_.resize(n);
+  last_move_.assign(n, Vec3{});
   list_.set_skin(skin_);
   s_out_ = s_fill;
   status_.porosity = params_.target_porosity;
@@ -218,13 +219,18 @@ void FbaRun::iterate(const std::function<void(const FbaStatus&)>& progress) {
     finished_ = true;
     return;
   }
+  // Heavy ball (fba.hpp) once the nominal scale is at the target (max() below sets it exactly).
+  const bool at_target = s_out_ == s_t_ && params_.momentum > 0.0;
   for (std::size_t i = 0; i < n; ++i) {
     Vec3 m = disp_[i];
+    if (at_target) m += last_move_[i] * params_.momentum;
     const double len = norm(m), cap = params_.max_move * target_[i];
     if (len > cap) m *= cap / len;
+    const Vec3 before = pos_[i];
     pos_[i] += m;
     for (int a = 0; a < 3; ++a)
       if (!box_.periodic[a]) pos_[i][a] = std::clamp(pos_[i][a], box_.lo[a] + target_[i], box_.hi()[a] - target_[i]);
+    if (at_target) last_move_[i] = pos_[i] - before;
   }
   s_out_ = std::max(s_t_, s_out_ - params_.shrink_rate * (s_out_ - s_in));
   ++iteration_;
@@ -258,6 +264,7 @@ void FbaRun::save_state(std::ostream& out) const {
   binary::write(out, seconds_);
   binary::write(out, static_cast<std::uint8_t>(built_));
   if (built_) list_.save(out);
+  binary::write_vector(out, last_move_);
 }
 
 FbaRun FbaRun::load_state(std::istream& in, int threads) {
@@ -282,6 +289,8 @@ FbaRun FbaRun::load_state(std::istream& in, int threads) {
   r.finished_ = finished != 0;
   r.built_ = built != 0;
   if (r.built_) r.list_.load(in);
+  binary::read_vector(in, r.last_move_, "last moves");
+  if (r.last_move_.size() != r.rho_.size()) fail_input("checkpoint is damaged: force-biased state out of range");
   return r;
 }
 

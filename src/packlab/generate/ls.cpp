@@ -7,6 +7,8 @@
 #include <cmath>
 #include <ctime>
 #include <limits>
+#include <numeric>
+#include <stdexcept>
 
 #include "packlab/core/error.hpp"
 #include "packlab/core/neighbor_list.hpp"
@@ -98,55 +100,61 @@ void LsSimulation::collide(Vec3& vi, Vec3& vj, const Vec3& n, double sigma_dot, 
 // Cells of bounding-sphere centres, one grid per class (built in ls_setup.cpp).
 
 void LsSimulation::insert(int i) {
-  Grid& gr = grid_[cls_[i]];
+  Grid& gr = grid_[body_[i].cls];
   const int cell = cell_[i];
-  if (gr.fill[cell] == gr.cap) {  // rare: double the capacity of every cell
-    const int cap2 = gr.cap * 2;
-    std::vector<int> slots(gr.fill.size() * cap2, -1);
-    for (std::size_t c = 0; c < gr.fill.size(); ++c)
-      std::copy_n(gr.slots.begin() + static_cast<long>(c * gr.cap), gr.fill[c],
-                  slots.begin() + static_cast<long>(c * cap2));
-    gr.slots.swap(slots);
-    gr.cap = cap2;
-  }
-  const int s = gr.fill[cell]++;
-  gr.slots[static_cast<std::size_t>(cell) * gr.cap + s] = i;
-  slot_[i] = s;
+  next_[i] = gr.head[cell];
+  gr.head[cell] = i;
 }
 
 void LsSimulation::remove(int i) {
-  Grid& gr = grid_[cls_[i]];
-  const int cell = cell_[i];
-  const int last = --gr.fill[cell];
-  int* base = gr.slots.data() + static_cast<std::size_t>(cell) * gr.cap;
-  const int moved = base[last];
-  base[slot_[i]] = moved;
-  slot_[moved] = slot_[i];
+  Grid& gr = grid_[body_[i].cls];
+  int* link = &gr.head[cell_[i]];
+  while (*link != i) link = &next_[*link];  // a cell holds a few particles
+  *link = next_[i];
 }
 
 // ---------------------------------------------------------------------------------------------
 // Neighbour lists (symmetric: (j, image) in i's list <=> (i, -image) in j's list).
 
 void LsSimulation::add_neighbor(int i, std::uint32_t entry) {
-  const int k = cls_[i];
-  if (list_fill_[i] == list_cap_[k]) {  // rare: grow this class's capacity, re-layout
-    std::vector<int> cap2 = list_cap_;
-    cap2[k] *= 2;
-    std::vector<std::size_t> base2(body_.size());
-    std::size_t total = 0;
-    for (std::size_t q = 0; q < body_.size(); ++q) {
-      base2[q] = total;
-      total += cap2[cls_[q]];
-    }
-    std::vector<std::uint32_t> list2(total);
-    for (std::size_t q = 0; q < body_.size(); ++q)
-      std::copy_n(list_.begin() + static_cast<long>(list_base_[q]), list_fill_[q],
-                  list2.begin() + static_cast<long>(base2[q]));
-    list_.swap(list2);
-    list_base_.swap(base2);
-    list_cap_ = cap2;
-  }
+  if (list_fill_[i] == list_cap_[i]) relocate_list(i);
   list_[list_base_[i] + list_fill_[i]++] = entry;
+}
+
+// i's segment is full: it moves to the pool's end with twice the room (its old place stays
+// unused until the next block's rebuild). The pool keeps spare room for this (build_lists);
+// when that is used up it grows by a sixteenth, in place where realloc can (counted in the peak).
+void LsSimulation::relocate_list(int i) {
+  const std::size_t cap2 = std::max<std::size_t>(4, 2 * static_cast<std::size_t>(list_cap_[i]));
+  if (cap2 > 65535 || list_end_ + cap2 > std::numeric_limits<std::uint32_t>::max())
+    throw std::runtime_error("LsSimulation: neighbour list too long (the skin is too large for this box)");
+  if (list_end_ + cap2 > list_.size()) {
+    list_.resize(list_end_ + cap2 + list_.size() / 16);
+    note_memory(0);
+  }
+  std::copy_n(list_.data() + list_base_[i], list_fill_[i], list_.data() + list_end_);
+  list_base_[i] = static_cast<std::uint32_t>(list_end_);
+  list_cap_[i] = static_cast<std::uint16_t>(cap2);
+  list_end_ += cap2;
+}
+
+LsSimulation::EntryPool& LsSimulation::EntryPool::operator=(const EntryPool& o) {
+  if (this != &o) {
+    resize(o.n_);
+    if (o.n_ > 0) std::copy_n(o.p_, o.n_, p_);
+  }
+  return *this;
+}
+
+void LsSimulation::EntryPool::resize(std::size_t n) {
+  if (n == 0) {
+    release();
+    return;
+  }
+  void* q = std::realloc(p_, n * sizeof(std::uint32_t));
+  if (q == nullptr) throw std::bad_alloc();
+  p_ = static_cast<std::uint32_t*>(q);
+  n_ = n;
 }
 
 void LsSimulation::drop_neighbor(int i, std::uint32_t entry) {
@@ -161,11 +169,15 @@ void LsSimulation::drop_neighbor(int i, std::uint32_t entry) {
   throw std::logic_error("LsSimulation: neighbour lists are not symmetric");
 }
 
-void LsSimulation::find_neighbors(int i, bool only_greater) {
-  const int k = cls_[i];
+// Calls visit(j, image code) for every sphere j whose bounding sphere overlaps i's (j > i only
+// with only_greater), in the order of the cell stencil.
+template <class Visit>
+void LsSimulation::scan_neighbors(int i, bool only_greater, Visit&& visit) {
+  const int k = body_[i].cls;
   const Grid& gk = grid_[k];
-  const auto& c = cc_[i];
-  const Vec3 ci = center_[i];
+  const int ci = cell_[i];
+  const int c[3] = {ci % gk.n[0], (ci / gk.n[0]) % gk.n[1], ci / (gk.n[0] * gk.n[1])};
+  const Vec3 xi = center_[i];
   const double bi = bound_[i];
   for (int m = 0; m < nclass_; ++m) {
     const Grid& gm = grid_[m];
@@ -194,18 +206,11 @@ void LsSimulation::find_neighbors(int i, bool only_greater) {
             throw std::logic_error("LsSimulation: neighbour beyond the first periodic image");
           const int code = image_code(sx, sy, sz);
           const Vec3& off = offset_[code];
-          const int cell = wx + row;
-          const int fill = gm.fill[cell];
-          const int* members = gm.slots.data() + static_cast<std::size_t>(cell) * gm.cap;
-          for (int q = 0; q < fill; ++q) {
-            const int j = members[q];
+          for (int j = gm.head[wx + row]; j >= 0; j = next_[j]) {
             if (j == i || (only_greater && j < i)) continue;
-            const Vec3 d = center_[j] + off - ci;
+            const Vec3 d = center_[j] + off - xi;
             const double r = bi + bound_[j];
-            if (norm2(d) < r * r) {
-              add_neighbor(i, static_cast<std::uint32_t>(j) * 32u + static_cast<std::uint32_t>(code));
-              add_neighbor(j, static_cast<std::uint32_t>(i) * 32u + static_cast<std::uint32_t>(26 - code));
-            }
+            if (norm2(d) < r * r) visit(j, code);
           }
         }
       }
@@ -213,6 +218,15 @@ void LsSimulation::find_neighbors(int i, bool only_greater) {
   }
 }
 
+void LsSimulation::find_neighbors(int i, bool only_greater) {
+  scan_neighbors(i, only_greater, [&](int j, int code) {
+    add_neighbor(i, static_cast<std::uint32_t>(j) * 32u + static_cast<std::uint32_t>(code));
+    add_neighbor(j, static_cast<std::uint32_t>(i) * 32u + static_cast<std::uint32_t>(26 - code));
+  });
+}
+
+// Two passes over the cells: count each sphere's neighbours, then lay the lists out with that
+// many entries plus room for the changes of a block (transfers add and drop neighbours).
 void LsSimulation::build_lists() {
   const std::size_t n = body_.size();
   const double s = s0_;
@@ -221,17 +235,28 @@ void LsSimulation::build_lists() {
   bound_.resize(n);
   for (std::size_t i = 0; i < n; ++i) {
     center_[i] = body_[i].x;  // wrapped by sync_all
-    bound_[i] = body_[i].rho * s + skin_[cls_[i]];
+    bound_[i] = rho_of(body_[i]) * s + skin_[body_[i].cls];
   }
-  if (list_cap_.size() != static_cast<std::size_t>(nclass_)) list_cap_.assign(nclass_, 16);
-  list_base_.resize(n);
   list_fill_.assign(n, 0);
+  for (int i = 0; i < static_cast<int>(n); ++i)
+    scan_neighbors(i, true, [&](int j, int) {
+      ++list_fill_[i];
+      ++list_fill_[j];
+    });
+  list_base_.resize(n);
+  list_cap_.resize(n);
   std::size_t total = 0;
   for (std::size_t q = 0; q < n; ++q) {
-    list_base_[q] = total;
-    total += list_cap_[cls_[q]];
+    const std::size_t cap = std::min<std::size_t>(65535, list_fill_[q] + 1 + list_fill_[q] / 8);
+    if (total + cap > std::numeric_limits<std::uint32_t>::max())
+      throw std::runtime_error("LsSimulation: neighbour lists beyond 2^32 entries");
+    list_base_[q] = static_cast<std::uint32_t>(total);
+    list_cap_[q] = static_cast<std::uint16_t>(cap);
+    list_fill_[q] = 0;
+    total += cap;
   }
-  list_.assign(total, 0);
+  list_end_ = total;
+  list_.resize(total + total / 8 + 64);  // spare room for segments that outgrow theirs
   for (int i = 0; i < static_cast<int>(n); ++i) find_neighbors(i, true);
 }
 
@@ -247,10 +272,10 @@ void LsSimulation::transfer(int i) {
   // Re-centre the bounding sphere at the (wrapped) current position.
   b.x = box_.wrap(b.x);
   center_[i] = b.x;
-  bound_[i] = b.rho * s_at(b.t) + skin_[cls_[i]];
+  bound_[i] = rho_of(b) * s_at(b.t) + skin_[b.cls];
   remove(i);
-  const Grid& gr = grid_[cls_[i]];
-  auto& c = cc_[i];
+  const Grid& gr = grid_[body_[i].cls];
+  int c[3];
   for (int a = 0; a < 3; ++a) c[a] = std::clamp(static_cast<int>(std::floor(b.x[a] / gr.h[a])), 0, gr.n[a] - 1);
   cell_[i] = c[0] + gr.n[0] * (c[1] + gr.n[1] * c[2]);
   insert(i);
@@ -260,23 +285,34 @@ void LsSimulation::transfer(int i) {
 // ---------------------------------------------------------------------------------------------
 // Event calendar: indexed binary min-heap of one pending event per particle.
 
+// While a block starts, hkey_[i] is i's event time (hpos_ the identity, hid_ empty): the
+// sorted order of those times becomes the heap (a sorted array is a heap).
 void LsSimulation::heap_build() {
   const int n = static_cast<int>(body_.size());
-  hkey_.resize(n);
   hid_.resize(n);
-  hpos_.resize(n);
-  std::vector<int> order(n);
-  std::iota(order.begin(), order.end(), 0);
-  std::sort(order.begin(), order.end(), [&](int a, int b) { return ev_[a].time < ev_[b].time; });
-  for (int k = 0; k < n; ++k) {  // a sorted array is a heap
-    hid_[k] = order[k];
-    hkey_[k] = ev_[order[k]].time;
-    hpos_[order[k]] = k;
+  std::iota(hid_.begin(), hid_.end(), 0);
+  std::sort(hid_.begin(), hid_.end(), [&](int a, int b) { return hkey_[a] < hkey_[b]; });
+  for (int k = 0; k < n; ++k) hpos_[hid_[k]] = k;
+  // hkey_[k] <- hkey_[hid_[k]] in place, cycle by cycle (hid_ marked negative while visited).
+  for (int k = 0; k < n; ++k) {
+    if (hid_[k] < 0) continue;
+    const double first = hkey_[k];
+    int q = k;
+    for (;;) {
+      const int from = hid_[q];
+      hid_[q] = -1 - from;
+      if (from == k) {
+        hkey_[q] = first;
+        break;
+      }
+      hkey_[q] = hkey_[from];
+      q = from;
+    }
   }
+  for (int& h : hid_) h = -1 - h;
 }
 
-void LsSimulation::heap_update(int i) {
-  const double key = ev_[i].time;
+void LsSimulation::heap_update(int i, double key) {
   int k = hpos_[i];
   const int n = static_cast<int>(hid_.size());
   double* hk = hkey_.data();
@@ -312,6 +348,14 @@ void LsSimulation::heap_update(int i) {
 
 void LsSimulation::predict(int i) {
   const Body bi = body_[i];
+  const Body* bodies = body_.data();
+  const std::uint32_t* l = list_.data() + list_base_[i];
+  const int fill = list_fill_[i];
+  // The neighbours' lines requested together, before the transfer time is computed (away from
+  // the L2 cache, at 10^5 particles and more, one after another each would cost a latency).
+  for (int q = 0; q < fill; ++q) __builtin_prefetch(bodies + (l[q] >> 5));
+  const double* rho = class_rho_.data();
+  const double rho_i = rho[bi.cls];
   const double now = bi.t;
   const double g = params_.growth_rate;
   const double s = s_at(now);
@@ -319,8 +363,8 @@ void LsSimulation::predict(int i) {
   double tau_tr;
   {
     const Vec3 dx = bi.x - center_[i];
-    const double w = bound_[i] - bi.rho * s;
-    const double wdot = -bi.rho * g;
+    const double w = bound_[i] - rho_i * s;
+    const double wdot = -rho_i * g;
     const double a = norm2(bi.v) - wdot * wdot;
     const double b = dot(dx, bi.v) - w * wdot;
     const double c = norm2(dx) - w * w;
@@ -335,15 +379,11 @@ void LsSimulation::predict(int i) {
       } else {
         tau_tr = inf;
       }
-      if (g > 0.0) tau_tr = std::min(tau_tr, w / (bi.rho * g));
+      if (g > 0.0) tau_tr = std::min(tau_tr, w / (rho_i * g));
     }
   }
   double best = now + tau_tr;
   int partner = -1;
-  const Body* bodies = body_.data();
-  const Event* ev = ev_.data();
-  const std::uint32_t* l = list_.data() + list_base_[i];
-  const int fill = list_fill_[i];
   for (int q = 0; q < fill; ++q) {
     const std::uint32_t e = l[q];
     const int j = static_cast<int>(e >> 5);
@@ -353,19 +393,21 @@ void LsSimulation::predict(int i) {
     const Vec3 dx{bj.x.x + bj.v.x * dtj + off.x - bi.x.x, bj.x.y + bj.v.y * dtj + off.y - bi.x.y,
                   bj.x.z + bj.v.z * dtj + off.z - bi.x.z};
     const Vec3 dv = bj.v - bi.v;
-    const double sig1 = bi.rho + bj.rho;
+    const double sig1 = rho_i + rho[bj.cls];
     const double tau = collision_time_below(dx, dv, sig1 * s, sig1 * g, best - now);
     // A collision after j's own next event is left to j: j predicts again then.
-    if (now + tau < best && now + tau <= ev[j].time) {
+    if (now + tau < best && now + tau <= event_time(j)) {
       best = now + tau;
       partner = j;
     }
   }
   Event& e = ev_[i];
-  e.time = best;
   e.partner = partner;
-  e.count = partner >= 0 ? count_[partner] : 0;
-  if (!hid_.empty()) heap_update(i);
+  e.count = partner >= 0 ? body_[partner].count : 0;
+  if (hid_.empty())
+    hkey_[i] = best;  // a block starts: by particle (heap_build)
+  else
+    heap_update(i, best);
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -380,33 +422,52 @@ void LsSimulation::sync_all(double t) {
 }
 
 void LsSimulation::start_block() {
+  // The lists are rebuilt below: free them first, so that the re-sort's temporaries do not
+  // stack on top of them.
+  list_.release();
   // Morton order: neighbours in space are neighbours in memory.
   const double cell = std::max(2.0 * class_rho_[0] * std::max(s0_, 0.05),
                                std::min({box_.length.x, box_.length.y, box_.length.z}) * 1e-4);
-  std::vector<Vec3> pos(body_.size());
-  for (std::size_t i = 0; i < body_.size(); ++i) pos[i] = body_[i].x;
-  const std::vector<int> order = spatial_order(box_, pos, cell);
+  const std::size_t n = body_.size();
   {
-    std::vector<Body> b2(body_.size());
-    std::vector<int> c2(body_.size()), id2(body_.size());
-    std::vector<std::uint32_t> n2(body_.size());
-    for (std::size_t k = 0; k < order.size(); ++k) {
-      b2[k] = body_[order[k]];
-      c2[k] = cls_[order[k]];
-      id2[k] = id_[order[k]];
-      n2[k] = count_[order[k]];
+    std::vector<Vec3> pos(n);
+    for (std::size_t i = 0; i < n; ++i) pos[i] = body_[i].x;
+    std::vector<int> order = spatial_order(box_, pos, cell);
+    // spatial_order's keys (8 B) and stable-sort buffer (up to 4 B) per particle were alive
+    // beside the positions and the order.
+    note_memory(n * (sizeof(Vec3) + sizeof(int) + 12));
+    // Permute in place, cycle by cycle (slot k takes particle order[k]; visited slots marked
+    // by a negative entry).
+    for (std::size_t k = 0; k < n; ++k) {
+      if (order[k] < 0) continue;
+      const Body b0 = body_[k];
+      const int id0 = id_[k];
+      std::size_t q = k;
+      for (;;) {
+        const auto from = static_cast<std::size_t>(order[q]);
+        order[q] = -1 - order[q];
+        if (from == k) {
+          body_[q] = b0;
+          id_[q] = id0;
+          break;
+        }
+        body_[q] = body_[from];
+        id_[q] = id_[from];
+        q = from;
+      }
     }
-    body_.swap(b2);
-    cls_.swap(c2);
-    id_.swap(id2);
-    count_.swap(n2);
   }
   build_grids();
   build_lists();
   hid_.clear();
-  for (auto& e : ev_) e = Event{inf, -2, 0};
-  for (int i = 0; i < static_cast<int>(body_.size()); ++i) predict(i);
+  hkey_.resize(n);
+  hpos_.resize(n);
+  std::iota(hpos_.begin(), hpos_.end(), 0);
+  for (auto& e : ev_) e = Event{-2, 0};
+  std::fill(hkey_.begin(), hkey_.end(), inf);
+  for (int i = 0; i < static_cast<int>(n); ++i) predict(i);
   heap_build();
+  note_memory(0);
   virial_ = 0.0;
 }
 
@@ -424,16 +485,17 @@ bool LsSimulation::run_block() {
   while (done < budget) {
     const int i = hid_[0];
     const Event e = ev_[i];
-    if (e.time >= t_end_) {
+    const double e_time = hkey_[0];
+    if (e_time >= t_end_) {
       reached_end = std::isfinite(t_end_);
       if (reached_end) now = t_end_;
       break;
     }
-    now = e.time;
+    now = e_time;
     Body& bi = bodies[i];
     if (e.partner >= 0) {
       const int j = e.partner;
-      if (count_[j] != e.count) {  // partner changed velocity since: predict again
+      if (body_[j].count != e.count) {  // partner changed velocity since: predict again
         ++status_.stale;
         bi.x += bi.v * (now - bi.t);
         bi.t = now;
@@ -455,12 +517,12 @@ bool LsSimulation::run_block() {
       }
       const double r = norm(d);
       const Vec3 nrm = d * (1.0 / r);
-      const double sig1 = bi.rho + bj.rho;
+      const double sig1 = rho_of(bi) + rho_of(bj);
       const double u = dot(bj.v - bi.v, nrm);
       virial_ += std::abs(u) * r;  // exchanged momentum (unit masses) times distance, growth part excluded
       collide(bi.v, bj.v, nrm, sig1 * g, boost);
-      ++count_[i];
-      ++count_[j];
+      ++body_[i].count;
+      ++body_[j].count;
       ++status_.collisions;
       ++done;
       predict(i);
@@ -477,11 +539,12 @@ bool LsSimulation::run_block() {
     }
   }
   sync_all(now);
+  note_memory(0);
   {  // adapt the skin: transfers cost a cell search, large lists cost every prediction
     const double c = static_cast<double>(status_.collisions - collisions0);
     const double t = static_cast<double>(status_.transfers - transfers0);
     double fill = 0.0;
-    for (int x : list_fill_) fill += x;
+    for (const std::uint16_t x : list_fill_) fill += x;
     fill /= static_cast<double>(n);
     if (t > 0.5 * c && fill < 12.0)
       skin_rel_ = std::min(2.0, skin_rel_ * 1.5);

@@ -18,10 +18,10 @@
 //  - Collision times: the smaller positive root of |dx + dv t| = sigma + sigma_dot t (eq. 8),
 //    for the periodic image given by the cell stencil.
 //  - Event calendar: one pending event per particle (its earliest collision or neighbour-list
-//    transfer) in an indexed binary heap; a predicted collision carries its partner's collision
-//    counter and is discarded when the partner's velocity changed since (per-particle
-//    invalidation). Particles are advanced lazily (each keeps its own time stamp). A collision
-//    later than the partner's own next event is left to the partner (it predicts again then).
+//    transfer) in an indexed binary heap (the heap holds the event times); a predicted collision carries its partner's
+//    collision counter and is discarded when the partner's velocity changed since (per-particle invalidation).
+//    Particles are advanced lazily (each keeps its own time stamp). A collision later than the partner's own next event
+//    is left to the partner (it predicts again then).
 //  - Neighbours (Donev, Torquato & Stillinger 2005): each sphere has a bounding sphere, its
 //    radius plus `neighbor_skin` x its diameter; spheres are neighbours when their bounding
 //    spheres overlap, and only neighbours are tested for collisions. When a sphere reaches its
@@ -34,6 +34,10 @@
 //    time, velocities are rescaled to kT (the boost heats the system), the reduced pressure
 //    p = PV/(NkT) of the block is measured from the collision virial (growth part excluded),
 //    particles are re-sorted along a Morton curve and all events are predicted anew.
+//  - Memory (bench_ls prints it per particle): a particle is one cache line with its class and
+//    collision counter; cells link their members (a head per cell, a next per particle); the
+//    neighbour lists are counted, then laid out with 1 + 1/8 spare entries each, and are freed
+//    while the particles are re-sorted.
 //  - Stops at the target volume fraction (exactly: the last block ends at the time where
 //    s^3 = phi), or at jamming: reduced pressure >= max_reduced_pressure (1e12 by default, the
 //    criterion of Skoge–Donev and PackingGeneration), or after max_blocks blocks.
@@ -43,10 +47,12 @@
 
 #include <array>
 #include <cstdint>
+#include <cstdlib>
 #include <functional>
 #include <istream>
 #include <ostream>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "packlab/core/packing.hpp"
@@ -75,14 +81,14 @@ std::string ls_stop_name(LsStop stop);
 struct LsStatus {
   long blocks = 0;
   long long collisions = 0;
-  long long transfers = 0;       // neighbour-list transfers (a sphere reached its bounding sphere)
-  long long stale = 0;           // events discarded by the invalidation counters
+  long long transfers = 0;  // neighbour-list transfers (a sphere reached its bounding sphere)
+  long long stale = 0;      // events discarded by the invalidation counters
   double volume_fraction = 0.0;
-  double scale = 0.0;            // s
-  double reduced_pressure = 1.0; // of the last block
-  double time = 0.0;             // simulated time since the start
-  double seconds = 0.0;          // wall time
-  double cpu_seconds = 0.0;      // processor time of this process (= wall time on an idle core)
+  double scale = 0.0;             // s
+  double reduced_pressure = 1.0;  // of the last block
+  double time = 0.0;              // simulated time since the start
+  double seconds = 0.0;           // wall time
+  double cpu_seconds = 0.0;       // processor time of this process (= wall time on an idle core)
   LsStop stop = LsStop::max_blocks;
   long long events() const { return collisions + transfers; }  // discarded (stale) events not counted
 };
@@ -116,6 +122,10 @@ class LsSimulation {
   double overlap_correction() const { return overlap_correction_; }
   // Replaces positions (e.g. after shaking); same particles, same order as packing().
   void set_positions(const std::vector<Vec3>& position);
+  // Bytes held by the simulation's arrays now (their capacities), and the most they held at any
+  // time so far, the temporaries of a block's start (re-sort, list build) included.
+  std::size_t memory_bytes() const;
+  std::size_t peak_memory_bytes() const { return peak_bytes_; }
 
   // Collision time of two spheres, eq. (8): smallest t >= 0 with |dx + dv t| = sigma + sdot t,
   // where dx, dv are the separation and relative velocity; +inf when they never touch.
@@ -125,23 +135,59 @@ class LsSimulation {
   static void collide(Vec3& vi, Vec3& vj, const Vec3& n, double sigma_dot, double boost);
 
  private:
-  struct Body {  // one cache line
-    Vec3 x;       // position at time t (box coordinates relative to box.lo)
-    double t;     // time stamp
+  struct alignas(64) Body {  // one cache line (aligned: a particle is read with one line, not two)
+    Vec3 x;                  // position at time t (box coordinates relative to box.lo)
+    double t;                // time stamp
     Vec3 v;
-    double rho;   // radius at s = 1
+    std::uint32_t count;  // collisions so far (invalidates the partners' predictions)
+    int cls;              // size class: radius at s = 1 is class_rho_[cls]
   };
-  struct Event {
-    double time;
+  struct SavedBody {  // the checkpoint's layout of a particle (radius at s = 1 in place of class and count)
+    Vec3 x;
+    double t;
+    Vec3 v;
+    double rho;
+  };
+  struct Event {          // the time is the calendar's key (event_time)
     int partner;          // >= 0 collision partner; -1 transfer; -2 none
     std::uint32_t count;  // partner's collision counter at prediction
+  };
+  // Neighbour-list entries in one malloc'd block grown by realloc: glibc moves the pages of a
+  // large block instead of copying it, so the pool never exists twice while it grows.
+  class EntryPool {
+   public:
+    EntryPool() = default;
+    EntryPool(const EntryPool& o) { *this = o; }
+    EntryPool(EntryPool&& o) noexcept { swap(o); }
+    EntryPool& operator=(const EntryPool& o);
+    EntryPool& operator=(EntryPool&& o) noexcept {
+      swap(o);
+      return *this;
+    }
+    ~EntryPool() { std::free(p_); }
+    void swap(EntryPool& o) noexcept {
+      std::swap(p_, o.p_);
+      std::swap(n_, o.n_);
+    }
+    void resize(std::size_t n);  // keeps the first min(n, size()) entries; new ones unset
+    void release() {
+      std::free(p_);
+      p_ = nullptr;
+      n_ = 0;
+    }
+    std::uint32_t* data() { return p_; }
+    const std::uint32_t* data() const { return p_; }
+    std::size_t size() const { return n_; }
+    std::uint32_t& operator[](std::size_t k) { return p_[k]; }
+
+   private:
+    std::uint32_t* p_ = nullptr;
+    std::size_t n_ = 0;
   };
   struct Grid {
     int n[3] = {1, 1, 1};
     double h[3] = {1, 1, 1};
-    int cap = 8;
-    std::vector<int> slots;  // n cells x cap
-    std::vector<int> fill;   // per cell
+    std::vector<int> head;  // per cell: first member (-1: empty); next_ links the rest
   };
 
   LsSimulation() = default;
@@ -154,35 +200,41 @@ class LsSimulation {
   void insert(int i);
   void remove(int i);
   void build_lists();
+  template <class Visit>
+  void scan_neighbors(int i, bool only_greater, Visit&& visit);
   void add_neighbor(int i, std::uint32_t entry);
+  void relocate_list(int i);
   void drop_neighbor(int i, std::uint32_t entry);
   void find_neighbors(int i, bool only_greater);
   void transfer(int i);
   void predict(int i);
-  void heap_update(int i);
+  void heap_update(int i, double key);
   void heap_build();
+  // Time of i's pending event (the calendar's key; by particle while a block starts).
+  double event_time(int j) const { return hkey_[static_cast<std::size_t>(hpos_[j])]; }
   double s_at(double t) const { return s0_ + params_.growth_rate * t; }
+  double rho_of(const Body& b) const { return class_rho_[b.cls]; }
 
   LsParams params_;
   Box box_;
   Vec3 origin_;
   int nclass_ = 1;
-  std::vector<double> class_rho_;        // radius at s = 1 per class
-  std::vector<double> reach_;            // nclass x nclass: largest bounding-sphere reach this block
+  std::vector<double> class_rho_;  // radius at s = 1 per class
+  std::vector<double> reach_;      // nclass x nclass: largest bounding-sphere reach this block
   std::vector<Body> body_;
-  std::vector<int> cls_, id_;
-  std::vector<std::uint32_t> count_;
+  std::vector<int> id_;  // original index
   std::vector<Event> ev_;
-  std::vector<int> cell_, slot_;
-  std::vector<std::array<int, 3>> cc_;
-  std::vector<Vec3> center_;             // bounding-sphere centres
-  std::vector<double> bound_;            // bounding-sphere radii
-  std::vector<double> skin_;             // per class: bounding radius - radius at build
-  std::vector<double> bound_cap_;        // per class: largest bounding radius this block
-  std::vector<int> list_cap_;            // per class
-  std::vector<std::size_t> list_base_;   // per particle
-  std::vector<int> list_fill_;           // per particle
-  std::vector<std::uint32_t> list_;      // entries j * 32 + image code
+  std::vector<int> cell_, next_;   // cell of i in its class grid, next member of that cell
+  std::vector<Vec3> center_;       // bounding-sphere centres
+  std::vector<double> bound_;      // bounding-sphere radii
+  std::vector<double> skin_;       // per class: bounding radius - radius at build
+  std::vector<double> bound_cap_;  // per class: largest bounding radius this block
+  // Neighbour lists: one pool, each particle a segment [base, base + cap) of which fill are
+  // used; a full segment moves to the pool's end with twice the room (list_end_: first free).
+  std::vector<std::uint32_t> list_base_;
+  std::vector<std::uint16_t> list_fill_, list_cap_;
+  EntryPool list_;  // entries j * 32 + image code
+  std::size_t list_end_ = 0;
   std::array<Vec3, 27> offset_{};
   std::vector<Grid> grid_;
   std::vector<double> hkey_;
@@ -195,6 +247,8 @@ class LsSimulation {
   LsStatus status_;
   bool stopped_ = false;  // a stop criterion other than max_blocks was met
   double overlap_correction_ = 0.0;
+  std::size_t peak_bytes_ = 0;
+  void note_memory(std::size_t temporary_bytes);  // peak_bytes_ = max(peak, now + temporaries)
 };
 
 // Random points in a periodic cube and their classes for `particles` spheres of the given
@@ -206,7 +260,6 @@ struct LsStart {
   std::vector<double> unit_radius;  // fill the box at s = 1
   std::vector<int> klass;
 };
-LsStart make_ls_start(long particles, const SizeClasses& classes, double radius, double volume_fraction,
-                      Random& rng);
+LsStart make_ls_start(long particles, const SizeClasses& classes, double radius, double volume_fraction, Random& rng);
 
 }  // namespace packlab::generate

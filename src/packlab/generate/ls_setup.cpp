@@ -33,9 +33,10 @@ LsSimulation::LsSimulation(const Packing& start, const LsParams& params, Random&
   start.validate();
   for (int a = 0; a < 3; ++a)
     if (!start.box.periodic[a])
-      fail_input(fmt::format("box periodic along {} = false: Lubachevsky-Stillinger growth needs a box periodic "
-                             "on every axis",
-                             "xyz"[a]));
+      fail_input(
+          fmt::format("box periodic along {} = false: Lubachevsky-Stillinger growth needs a box periodic "
+                      "on every axis",
+                      "xyz"[a]));
   if (start.size() < 2) fail_input("particles = " + std::to_string(start.size()) + ": must be >= 2");
   const double ratio = min_contact_ratio(start);
   require(ratio >= 1.0 - 1e-9, "min contact ratio d/(r_i+r_j)", ratio,
@@ -65,9 +66,10 @@ LsSimulation::LsSimulation(const Box& box, std::vector<Vec3> points, std::vector
   params_.validate();
   for (int a = 0; a < 3; ++a)
     if (!box.periodic[a])
-      fail_input(fmt::format("box periodic along {} = false: Lubachevsky-Stillinger growth needs a box periodic "
-                             "on every axis",
-                             "xyz"[a]));
+      fail_input(
+          fmt::format("box periodic along {} = false: Lubachevsky-Stillinger growth needs a box periodic "
+                      "on every axis",
+                      "xyz"[a]));
   if (points.size() < 2) fail_input("particles = " + std::to_string(points.size()) + ": must be >= 2");
   if (unit_radius.size() != points.size()) throw std::logic_error("LsSimulation: radius and point counts differ");
   init(box, std::move(points), std::move(unit_radius), 0.0, rng);
@@ -92,22 +94,20 @@ void LsSimulation::init(const Box& box, std::vector<Vec3> points, std::vector<do
                            class_rho_.size()));
   nclass_ = static_cast<int>(class_rho_.size());
   body_.resize(n);
-  cls_.resize(n);
   id_.resize(n);
-  count_.assign(n, 0);
   size_work_arrays();
   double volume = 0.0;
   for (std::size_t i = 0; i < n; ++i) {
     Body& b = body_[i];
     b.x = box_.wrap(points[i] - origin_);
     b.t = 0.0;
-    b.rho = unit_radius[i];
+    b.count = 0;
     int k = 0;
     while (k + 1 < nclass_ && unit_radius[i] < class_rho_[k] * (1.0 - 1e-12)) ++k;
-    cls_[i] = k;
-    b.rho = class_rho_[k];
+    b.cls = k;
+    const double rho = class_rho_[k];
     id_[i] = static_cast<int>(i);
-    volume += 4.0 / 3.0 * std::numbers::pi * b.rho * b.rho * b.rho;
+    volume += 4.0 / 3.0 * std::numbers::pi * rho * rho * rho;
   }
   phi1_ = volume / box_.volume();
   s0_ = s0;
@@ -131,9 +131,10 @@ void LsSimulation::init(const Box& box, std::vector<Vec3> points, std::vector<do
   const double s_final = std::cbrt(phi_final / phi1_);
   const double l_min = std::min({box_.length.x, box_.length.y, box_.length.z});
   if (4.0 * class_rho_[0] * s_final >= l_min)
-    fail_input(fmt::format("box edge = {:g} m is less than two largest diameters ({:g} m) at volume fraction {:g}; "
-                           "use more particles",
-                           l_min, 4.0 * class_rho_[0] * s_final, phi_final));
+    fail_input(
+        fmt::format("box edge = {:g} m is less than two largest diameters ({:g} m) at volume fraction {:g}; "
+                    "use more particles",
+                    l_min, 4.0 * class_rho_[0] * s_final, phi_final));
   status_ = LsStatus{};
   status_.scale = s0_;
   status_.volume_fraction = phi1_ * s0_ * s0_ * s0_;
@@ -143,8 +144,7 @@ void LsSimulation::size_work_arrays() {
   const std::size_t n = body_.size();
   ev_.resize(n);
   cell_.resize(n);
-  slot_.resize(n);
-  cc_.resize(n);
+  next_.resize(n);
 }
 
 void LsSimulation::save_state(std::ostream& out) const {
@@ -157,10 +157,21 @@ void LsSimulation::save_state(std::ostream& out) const {
   binary::write(out, v_thermal_);
   binary::write(out, s0_);
   binary::write(out, skin_rel_);
-  binary::write_vector(out, body_);
-  binary::write_vector(out, cls_);
+  // The first layout (a particle with its radius, classes and counters beside).
+  const std::size_t n = body_.size();
+  std::vector<SavedBody> saved(n);
+  std::vector<int> cls(n);
+  std::vector<std::uint32_t> count(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    const Body& b = body_[i];
+    saved[i] = SavedBody{b.x, b.t, b.v, rho_of(b)};
+    cls[i] = b.cls;
+    count[i] = b.count;
+  }
+  binary::write_vector(out, saved);
+  binary::write_vector(out, cls);
   binary::write_vector(out, id_);
-  binary::write_vector(out, count_);
+  binary::write_vector(out, count);
   binary::write(out, status_);
   binary::write(out, static_cast<std::uint8_t>(stopped_));
 }
@@ -177,23 +188,49 @@ LsSimulation LsSimulation::load_state(std::istream& in) {
   binary::read(in, sim.v_thermal_, "thermal speed");
   binary::read(in, sim.s0_, "scale");
   binary::read(in, sim.skin_rel_, "skin");
-  binary::read_vector(in, sim.body_, "particles");
-  binary::read_vector(in, sim.cls_, "classes");
+  std::vector<SavedBody> saved;
+  std::vector<int> cls;
+  std::vector<std::uint32_t> count;
+  binary::read_vector(in, saved, "particles");
+  binary::read_vector(in, cls, "classes");
   binary::read_vector(in, sim.id_, "particle ids");
-  binary::read_vector(in, sim.count_, "collision counters");
+  binary::read_vector(in, count, "collision counters");
   binary::read(in, sim.status_, "status");
   binary::read(in, stopped, "stop flag");
   sim.params_.validate();
   sim.box_.periodic = {true, true, true};
   sim.nclass_ = static_cast<int>(sim.class_rho_.size());
-  const std::size_t n = sim.body_.size();
-  bool ok = n >= 2 && sim.nclass_ >= 1 && sim.cls_.size() == n && sim.id_.size() == n && sim.count_.size() == n;
+  const std::size_t n = saved.size();
+  bool ok = n >= 2 && sim.nclass_ >= 1 && cls.size() == n && sim.id_.size() == n && count.size() == n;
   for (std::size_t i = 0; ok && i < n; ++i)
-    ok = sim.cls_[i] >= 0 && sim.cls_[i] < sim.nclass_ && sim.id_[i] >= 0 && static_cast<std::size_t>(sim.id_[i]) < n;
+    ok = cls[i] >= 0 && cls[i] < sim.nclass_ && sim.id_[i] >= 0 && static_cast<std::size_t>(sim.id_[i]) < n &&
+         saved[i].rho == sim.class_rho_[static_cast<std::size_t>(cls[i])];
   if (!ok) fail_input("checkpoint is damaged: Lubachevsky-Stillinger state out of range");
+  sim.body_.resize(n);
+  for (std::size_t i = 0; i < n; ++i) sim.body_[i] = Body{saved[i].x, saved[i].t, saved[i].v, count[i], cls[i]};
   sim.stopped_ = stopped != 0;
   sim.size_work_arrays();
   return sim;
+}
+
+namespace {
+template <class T>
+std::size_t bytes_of(const std::vector<T>& v) {
+  return v.capacity() * sizeof(T);
+}
+}  // namespace
+
+std::size_t LsSimulation::memory_bytes() const {
+  std::size_t b = bytes_of(class_rho_) + bytes_of(reach_) + bytes_of(body_) + bytes_of(id_) + bytes_of(ev_) +
+                  bytes_of(cell_) + bytes_of(next_) + bytes_of(center_) + bytes_of(bound_) + bytes_of(skin_) +
+                  bytes_of(bound_cap_) + bytes_of(list_cap_) + bytes_of(list_base_) + bytes_of(list_fill_) +
+                  list_.size() * sizeof(std::uint32_t) + bytes_of(hkey_) + bytes_of(hid_) + bytes_of(hpos_);
+  for (const Grid& g : grid_) b += bytes_of(g.head);
+  return b;
+}
+
+void LsSimulation::note_memory(std::size_t temporary_bytes) {
+  peak_bytes_ = std::max(peak_bytes_, memory_bytes() + temporary_bytes);
 }
 
 void LsSimulation::set_params(const LsParams& params) {
@@ -217,15 +254,15 @@ void LsSimulation::build_grids() {
   const double g = params_.growth_rate;
   const double s_want = g > 0.0 ? s0_ * 1.02 : s0_;
   std::vector<long> per_class(nclass_, 0);
-  for (int k : cls_) ++per_class[k];
+  for (const Body& b : body_) ++per_class[b.cls];
   grid_.resize(nclass_);
   skin_.assign(nclass_, 0.0);
   bound_cap_.assign(nclass_, 0.0);
   // Skins relative to the current diameter, at least that of s = 0.2 (growth from points).
   const double l_min0 = std::min({box_.length.x, box_.length.y, box_.length.z});
   // Keep 2 x (largest bounding radius) within a quarter box.
-  skin_rel_ = std::min(skin_rel_, std::max(0.005, (0.2 * l_min0 - class_rho_[0] * s_want) /
-                                                      (2.0 * class_rho_[0] * std::max(s0_, 0.2))));
+  skin_rel_ = std::min(
+      skin_rel_, std::max(0.005, (0.2 * l_min0 - class_rho_[0] * s_want) / (2.0 * class_rho_[0] * std::max(s0_, 0.2))));
   for (int k = 0; k < nclass_; ++k) skin_[k] = skin_rel_ * 2.0 * class_rho_[k] * std::max(s0_, 0.2);
   double s_cap = inf;
   for (int k = 0; k < nclass_; ++k) {
@@ -253,28 +290,20 @@ void LsSimulation::build_grids() {
   for (int k = 0; k < nclass_; ++k) bound_cap_[k] = class_rho_[k] * std::max(s_cap, s0_) + skin_[k];
   reach_.assign(static_cast<std::size_t>(nclass_) * nclass_, 0.0);
   for (int k = 0; k < nclass_; ++k)
-    for (int m = 0; m < nclass_; ++m)
-      reach_[k * nclass_ + m] = (bound_cap_[k] + bound_cap_[m]) * (1.0 + cell_margin);
-  // Fill.
-  std::vector<int> occupancy;
+    for (int m = 0; m < nclass_; ++m) reach_[k * nclass_ + m] = (bound_cap_[k] + bound_cap_[m]) * (1.0 + cell_margin);
+  // Fill: members linked from each cell's head, in ascending order of index.
   for (int k = 0; k < nclass_; ++k) {
     Grid& gr = grid_[k];
-    occupancy.assign(static_cast<std::size_t>(gr.n[0]) * gr.n[1] * gr.n[2], 0);
-    for (std::size_t i = 0; i < body_.size(); ++i) {
-      if (cls_[i] != k) continue;
-      auto& c = cc_[i];
-      for (int a = 0; a < 3; ++a)
-        c[a] = std::clamp(static_cast<int>(std::floor(body_[i].x[a] / gr.h[a])), 0, gr.n[a] - 1);
-      cell_[i] = c[0] + gr.n[0] * (c[1] + gr.n[1] * c[2]);
-      ++occupancy[cell_[i]];
-    }
-    int most = 0;
-    for (int o : occupancy) most = std::max(most, o);
-    gr.cap = std::max(8, most + 4);
-    gr.fill.assign(occupancy.size(), 0);
-    gr.slots.assign(occupancy.size() * gr.cap, -1);
+    gr.head.assign(static_cast<std::size_t>(gr.n[0]) * gr.n[1] * gr.n[2], -1);
   }
-  for (std::size_t i = 0; i < body_.size(); ++i) insert(static_cast<int>(i));
+  for (int i = static_cast<int>(body_.size()) - 1; i >= 0; --i) {
+    const Grid& gr = grid_[body_[i].cls];
+    int c[3];
+    for (int a = 0; a < 3; ++a)
+      c[a] = std::clamp(static_cast<int>(std::floor(body_[i].x[a] / gr.h[a])), 0, gr.n[a] - 1);
+    cell_[i] = c[0] + gr.n[0] * (c[1] + gr.n[1] * c[2]);
+    insert(i);
+  }
   // Block end: the target or the largest scale these cells allow.
   t_target_ = inf;
   const double phi_t = params_.target_volume_fraction;
@@ -301,7 +330,7 @@ Packing LsSimulation::packing() {
     const Body& b = body_[i];
     const int o = id_[i];
     p.position[o] = box.wrap(b.x + b.v * (0.0 - b.t) + origin_);
-    p.radius[o] = b.rho * s0_;
+    p.radius[o] = rho_of(b) * s0_;
     p.velocity[o] = b.v;
   }
   const double ratio = min_contact_ratio(p);
@@ -317,13 +346,13 @@ Packing LsSimulation::packing() {
 
 // ---------------------------------------------------------------------------------------------
 
-LsStart make_ls_start(long particles, const SizeClasses& classes, double radius, double volume_fraction,
-                      Random& rng) {
+LsStart make_ls_start(long particles, const SizeClasses& classes, double radius, double volume_fraction, Random& rng) {
   classes.validate();
   require(particles >= 2 && particles <= 100'000'000, "particles", static_cast<double>(particles), "in [2, 1e8]");
-  // The event-driven state (positions, velocities, event calendar, cells, neighbour lists)
-  // measured at about 555 bytes per sphere (bench/bench_ls).
-  require_memory("particles", static_cast<double>(particles), static_cast<double>(particles), 555.0);
+  // The process at its peak: the event-driven state (positions, velocities, event calendar,
+  // cells, neighbour lists; ~200 B) with the start points and the packing out and its check,
+  // measured at 390 B per sphere (bench_ls 1000000 3 0.6, peak_rss_per_particle).
+  require_memory("particles", static_cast<double>(particles), static_cast<double>(particles), 400.0);
   require(radius > 0.0 && std::isfinite(radius), "radius", radius, "> 0 m");
   require(volume_fraction > 0.0 && volume_fraction < 1.0, "volume_fraction", volume_fraction, "in (0, 1)");
   const std::vector<long> count = classes.counts(particles);

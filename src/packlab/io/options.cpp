@@ -310,6 +310,9 @@ void add_fba_params(ConfigSchema& schema, generate::FbaParams& p) {
       .range({0.0, 1.0, true, false})
       .number("step", p.step, "Fraction of each pair's overlap removed per iteration")
       .range({0.0, 1.0, true, false})
+      .number("momentum", p.momentum,
+              "Heavy-ball factor of the overlap removal at the target: each move adds this times the previous one")
+      .range({0.0, 1.0, false, true})
       .integer("max_iterations", p.max_iterations, "Iteration limit")
       .range({1.0, ranges::inf, false, true})
       .integer("threads", p.threads, "Threads of the neighbour search")
