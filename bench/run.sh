@@ -56,6 +56,8 @@ fi
 run bench_shear "$ROOT/examples/shear/data/vem_ns8000_nv2000.xyz" 1 $([ "$quick" = 1 ] && echo "2000 2" || echo "10000 10")
 # Inverse opals: FBA + opal builder (~49k particles, pore/particle 10), then compression of a
 # ~54,000-particle FCC opal: particle-steps/s, bond-steps/s, bytes per particle and per bond.
+# Brownian-dynamics coagulation: 8000 spheres at Phi = 0.4, psi_0 = 15 mV, 2000 steps.
+run bench_bd 8000 2000 15
 run bench_fba 10
 if [ "$quick" = 1 ]; then run bench_compress 1 - 1 500; else run bench_compress 1; fi
 # The quasi-static solver (docs/static-solver.md): E of the same ~54,000-particle opal from one
