@@ -3,14 +3,12 @@
 // callback that re-acquires the GIL, and conversions of small vectors.
 #pragma once
 
-#include <nlohmann/json.hpp>
+#include <fmt/format.h>
 #include <pybind11/functional.h>
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 #include <pybind11/stl/filesystem.h>
-
-#include <fmt/format.h>
 
 #include <array>
 #include <chrono>
@@ -18,6 +16,7 @@
 #include <cstdint>
 #include <limits>
 #include <memory>
+#include <nlohmann/json.hpp>
 #include <string>
 #include <string_view>
 #include <type_traits>
@@ -99,8 +98,8 @@ inline py::array numeric_array(const py::handle& values, const char* what, std::
   }
   const std::string kind = py::str(a.dtype().attr("kind"));
   if (kind.size() != 1 || kinds.find(kind[0]) == std::string_view::npos) {
-    const std::string got = values.is_none() ? std::string("None")
-                                             : fmt::format("dtype {}", std::string(py::str(a.dtype())));
+    const std::string got =
+        values.is_none() ? std::string("None") : fmt::format("dtype {}", std::string(py::str(a.dtype())));
     fail_input(fmt::format("{}: must be {}, got {}", what, expected, got));
   }
   return a;
@@ -117,8 +116,7 @@ std::vector<T> from_numpy(const py::handle& values, const char* what, py::ssize_
                                                  : "a 1-D array of numbers";
   const py::array raw = numeric_array(values, what, integral ? "iub" : "fiu", expected);
   if (raw.ndim() != 1) fail_input(fmt::format("{}: must be {}, got {} dimensions", what, expected, raw.ndim()));
-  if (n >= 0 && raw.shape(0) != n)
-    fail_input(fmt::format("{}: must have {} entries, got {}", what, n, raw.shape(0)));
+  if (n >= 0 && raw.shape(0) != n) fail_input(fmt::format("{}: must have {} entries, got {}", what, n, raw.shape(0)));
   if constexpr (integral && !std::is_same_v<T, bool>) {
     // Through int64 (exact for every integer dtype but huge uint64), then a range check.
     auto a = py::array_t<long long, py::array::c_style | py::array::forcecast>::ensure(raw);
@@ -194,8 +192,7 @@ inline io::ConfigSchema apply_keywords(io::ConfigSchema schema, const py::kwargs
       } catch (const py::cast_error&) {
         fail_input(fmt::format("{} = {}: out of range", name, std::string(py::repr(integer))));
       }
-    }
-    else if (py::hasattr(value, "__float__"))
+    } else if (py::hasattr(value, "__float__"))
       v = value.cast<double>();
     else
       fail_input(function + ": " + name + " = " + std::string(py::repr(value)) + ": must be a " + field->type);
@@ -262,6 +259,7 @@ void bind_analyze_fits(py::module_& m);       // analyze_fits.cpp: inflection, p
 void bind_dem(py::module_& m);
 void bind_oscillatory_shear(py::module_& m);     // oscillatory_shear.cpp, its calibration
 void bind_generate_fba(py::module_& m);          // generate_fba.cpp
+void bind_generate_bd(py::module_& m);           // generate_bd.cpp
 void bind_generate_opal(py::module_& m);         // generate_opal.cpp: inverse-opal builder
 void bind_uniaxial_compression(py::module_& m);  // uniaxial_compression.cpp, its calibration
 

@@ -27,6 +27,7 @@ PYBIND11_MODULE(_core, m) {
   packlab::python::bind_dem(m);
   packlab::python::bind_oscillatory_shear(m);
   packlab::python::bind_generate_fba(m);
+  packlab::python::bind_generate_bd(m);
   packlab::python::bind_generate_opal(m);
   packlab::python::bind_uniaxial_compression(m);
 }

@@ -74,3 +74,17 @@ def test_bond_models_on_fcc(tmp_path):
     assert np.array_equal(back.bonds.i, elastic.bonds.i) and np.array_equal(back.bonds.image, elastic.bonds.image)
     with pytest.raises(packlab.InputError, match="model = glue"):
         packlab.bond(p, model="glue")
+
+
+def test_generate_bd_coagulates_and_reports_the_barrier():
+    r = packlab.generate_bd(particles=250, volume_fraction=0.4, surface_potential=0.0, duration=0.02, samples=5,
+                            seed=3)
+    assert len(r.packing) == 250 and r.packing.volume_fraction() == pytest.approx(0.4)
+    assert r.bonds > 100 and r.largest_cluster > 100 and r.stop == "duration"
+    assert r.mean_coordination == pytest.approx(2 * r.bonds / 250)
+    assert r.log["msd"][-1] > 0 and len(r.log["reduced_time"]) == 6
+    assert not r.has_barrier
+    r15 = packlab.generate_bd(particles=250, surface_potential=15e-3, duration=1e-4, seed=3)
+    assert r15.has_barrier and r15.barrier_above_secondary_minimum_kT == pytest.approx(5.62, abs=0.01)
+    with pytest.raises(packlab.InputError, match="volume_fraction"):
+        packlab.generate_bd(particles=250, volume_fraction=0.7)

@@ -1,4 +1,4 @@
-// --resume of generate fba, generate ls, generate scrm and shake (cli/checkpoint.hpp): a run killed with
+// --resume of generate fba, generate bd, generate ls, generate scrm and shake (cli/checkpoint.hpp): a run killed with
 // SIGKILL once it has written a checkpoint and resumed gives the packing of an uninterrupted
 // run bit for bit; a damaged checkpoint, a missing one and a changed setting are refused with
 // exit code 2 and one message.
@@ -59,6 +59,12 @@ TEST(ResumeCli, GenerateFbaKilledAndResumedEqualsUninterruptedRun) {
   TempDir dir("resume-fba");
   expect_resumed_run_equals_straight_run("generate fba",
                                          "--particles 400 --sizes 1,0.6 --porosity 0.4 --periodic xy --seed 3", dir);
+}
+
+TEST(ResumeCli, GenerateBdKilledAndResumedEqualsUninterruptedRun) {
+  TempDir dir("resume-bd");
+  expect_resumed_run_equals_straight_run(
+      "generate bd", "--particles 200 --surface-potential 15e-3 --duration 0.05 --samples 20 --msd --seed 3", dir);
 }
 
 TEST(ResumeCli, GenerateLsKilledAndResumedEqualsUninterruptedRun) {

@@ -27,6 +27,8 @@ void add_analyze_rdf(CLI::App& analyze);
 // `test shear|compress`, `calibrate shear|compress`.
 void add_bond(CLI::App& app);
 void add_generate_fba(CLI::App& generate);
+// Brownian-dynamics coagulation with the DLVO potential: `generate bd`.
+void add_generate_bd(CLI::App& generate);
 void add_build_opal(CLI::App& build);
 void add_test_shear(CLI::App& test);
 void add_test_compress(CLI::App& test);

@@ -21,7 +21,7 @@ std::string config_reference() {
   for (const std::string& section :
        {option_reference(io::lattice_options), option_reference(io::random_options), vem_config_reference(),
         ls_config_reference(), scrm_config_reference(), shake_config_reference(), option_reference(io::fba_options),
-        option_reference(io::opal_build_options), option_reference(io::relax_options),
+        option_reference(io::bd_options), option_reference(io::opal_build_options), option_reference(io::relax_options),
         option_reference(io::bond_options), option_reference(io::shear_test_options),
         option_reference(io::shear_calibration_options), option_reference(io::compression_test_options),
         option_reference(io::compression_calibration_options), option_reference(io::analyze_options),

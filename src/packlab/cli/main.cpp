@@ -33,6 +33,7 @@ int main(int argc, char** argv) {
   auto* analyze = packlab::cli::add_analyze(app);
   packlab::cli::add_analyze_rdf(*analyze);
   packlab::cli::add_generate_fba(*generate);
+  packlab::cli::add_generate_bd(*generate);
   packlab::cli::add_bond(app);
   packlab::cli::add_config_keys(app);
   auto* build = app.add_subcommand("build", "Build a model from a packing (inverse opal)");

@@ -13,12 +13,11 @@ using P = Parameter<Material>;
 constexpr Range damping_range{0.0, 1.0, false, true};
 constexpr Range poisson_range{-1.0, 0.5, true, true};
 constexpr Range restitution_range{0.0, 1.0, true, false};
-const std::array<P, 11> parameters{{
+const std::array<P, 17> parameters{{
     {"normal_stiffness", "N/m", "Particle normal stiffness k_n", &Material::normal_stiffness, ranges::positive},
     {"shear_stiffness", "N/m", "Particle shear stiffness k_s", &Material::shear_stiffness, ranges::non_negative},
     {"friction", "", "Coulomb friction coefficient mu", &Material::friction, ranges::non_negative},
-    {"density", "kg/m^3", "Density (where the packing has none per particle)", &Material::density,
-     ranges::positive},
+    {"density", "kg/m^3", "Density (where the packing has none per particle)", &Material::density, ranges::positive},
     {"damping", "", "Local damping coefficient alpha", &Material::damping, damping_range},
     {"youngs_modulus", "Pa", "Young's modulus E", &Material::youngs_modulus, ranges::positive},
     {"poisson_ratio", "", "Poisson's ratio nu", &Material::poisson_ratio, poisson_range},
@@ -28,6 +27,21 @@ const std::array<P, 11> parameters{{
      &Material::work_of_adhesion, ranges::non_negative},
     {"adhesion_range", "m", "Separation beyond contact over which the adhesive force fades to zero",
      &Material::adhesion_range, ranges::positive},
+    {"hamaker_constant", "J", "Hamaker constant A of the particles across the liquid (DLVO van der Waals term)",
+     &Material::hamaker_constant, ranges::non_negative},
+    {"surface_potential",
+     "V",
+     "Surface potential psi_0 (DLVO double-layer term, constant potential)",
+     &Material::surface_potential,
+     {-1.0, 1.0, false, false}},
+    {"debye_length", "m", "Debye screening length 1/kappa of the electrolyte", &Material::debye_length,
+     ranges::positive},
+    {"relative_permittivity", "", "Relative permittivity eps_r of the liquid", &Material::relative_permittivity,
+     ranges::positive},
+    {"dlvo_min_separation", "m", "Surface separation below which the DLVO force is held constant",
+     &Material::dlvo_min_separation, ranges::positive},
+    {"dlvo_cutoff", "m", "Surface separation beyond which the DLVO law is zero", &Material::dlvo_cutoff,
+     ranges::positive},
 }};
 }  // namespace
 
@@ -45,9 +59,7 @@ StiffnessRule stiffness_rule_from_name(const std::string& name) {
   fail_input(fmt::format("stiffness_rule = {}: must be 'particle' (PFC, in series) or 'contact'", name));
 }
 
-std::string stiffness_rule_name(StiffnessRule rule) {
-  return rule == StiffnessRule::particle ? "particle" : "contact";
-}
+std::string stiffness_rule_name(StiffnessRule rule) { return rule == StiffnessRule::particle ? "particle" : "contact"; }
 
 void validate(const std::vector<Material>& types, std::span<const std::string_view> law_properties) {
   if (types.empty()) fail_input("no particle type parameters given");

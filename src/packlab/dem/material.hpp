@@ -25,6 +25,13 @@ struct Material {
   double rolling_friction = 0.0;    // mu_r [-]
   double work_of_adhesion = 0.0;    // W = 2 gamma [J/m^2]
   double adhesion_range = 0.0;      // separation at which the attraction ends [m]
+  // DLVO law (dem/contact/dlvo.hpp); defaults: alumina in water at 25 C (docs/bd.md).
+  double hamaker_constant = 3.67e-20;   // A [J]
+  double surface_potential = 0.0;       // psi_0 [V]
+  double debye_length = 10.0e-9;        // 1/kappa [m]
+  double relative_permittivity = 78.5;  // eps_r [-]
+  double dlvo_min_separation = 0.4e-9;  // h_min [m]
+  double dlvo_cutoff = 0.25e-6;         // h_cutoff [m]
 };
 
 // Every property of Material, declared once. density and damping are read by the engine for

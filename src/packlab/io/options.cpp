@@ -319,6 +319,84 @@ void add_fba_params(ConfigSchema& schema, generate::FbaParams& p) {
       .range({1.0, 1024.0, false, false});
 }
 
+void add_bd_params(ConfigSchema& schema, generate::BdParams& p) {
+  schema.integer("particles", p.particles, "Number of spheres N (the box follows, doh-elastic-properties eq. 5)")
+      .range({2.0, 1e8, false, false})
+      .number("volume_fraction", p.volume_fraction, "Volume fraction Phi of the spheres")
+      .range({0.0, 0.6, true, false})
+      .alias("phi")
+      .number("radius", p.radius, "Sphere radius a")
+      .unit("m")
+      .range(ranges::positive)
+      .number("hamaker_constant", p.hamaker_constant, "Hamaker constant A, particle / liquid / particle")
+      .unit("J")
+      .range(ranges::non_negative)
+      .number("surface_potential", p.surface_potential, "Surface potential psi_0 (constant-potential double layer)")
+      .unit("V")
+      .range({-1.0, 1.0, false, false})
+      .number("debye_length", p.debye_length, "Debye screening length 1/kappa (unless ionic_strength is given)")
+      .unit("m")
+      .range(ranges::positive)
+      .number("ionic_strength", p.ionic_strength,
+              "Ionic strength I of a 1:1 electrolyte; > 0 sets the Debye length from it (0: use debye_length)")
+      .unit("mol/m^3")
+      .range(ranges::non_negative)
+      .number("relative_permittivity", p.relative_permittivity, "Relative permittivity eps_r of the liquid")
+      .range(ranges::positive)
+      .number("temperature", p.temperature, "Temperature T")
+      .unit("K")
+      .range(ranges::positive)
+      .number("viscosity", p.viscosity, "Viscosity eta of the liquid (Stokes drag 6 pi eta a)")
+      .unit("Pa s")
+      .range(ranges::positive)
+      .number("min_separation", p.min_separation, "Surface separation below which the DLVO force is held constant")
+      .unit("m")
+      .range(ranges::positive)
+      .number("cutoff", p.cutoff, "Surface separation beyond which the DLVO potential is cut off")
+      .unit("m")
+      .range(ranges::positive)
+      .number("initial_separation", p.initial_separation, "Smallest surface gap of the random start")
+      .unit("m")
+      .range(ranges::non_negative)
+      .number("bond_separation", p.bond_separation,
+              "A pair closer than this surface separation sticks (bonded: the primary minimum)")
+      .unit("m")
+      .range(ranges::positive)
+      .number("bond_stiffness_factor", p.bond_stiffness_factor, "Bond stiffness k_b dt / (6 pi eta a)")
+      .range({0.0, 0.08, true, false})
+      .boolean("central_bonds", p.central_bonds,
+               "Bonds resist stretching only: bonded spheres roll on each other (default: rigid bonds)")
+      .integer("quench_steps", p.quench_steps, "Noise-free steps at the end that relax the bonds to their rest length")
+      .range(ranges::non_negative)
+      .number("step_fraction", p.step_fraction, "Rms Brownian displacement per axis and step / Debye length")
+      .range({0.0, 1.0, true, false})
+      .number("time_step", p.time_step, "Time step (0: from step_fraction)")
+      .unit("s")
+      .range(ranges::non_negative)
+      .number("duration", p.duration, "Simulated time in units of the diffusion time a^2 / D_0")
+      .range(ranges::positive)
+      .boolean("until_stable", p.until_stable,
+               "Stop earlier once the bond count grows by less than stable_tolerance per stable_window")
+      .number("stable_window", p.stable_window, "Window of the until_stable test, in a^2 / D_0")
+      .range(ranges::positive)
+      .number("stable_tolerance", p.stable_tolerance, "Relative growth of the bond count per window deemed stable")
+      .range(ranges::non_negative)
+      .integer("samples", p.samples, "Rows of the log (bd_log.csv, msd.csv) over the run")
+      .range({1.0, 1e6, false, false})
+      .integer("threads", p.threads, "Threads of the neighbour search")
+      .range({1.0, 1024.0, false, false});
+}
+
+ConfigSchema bd_options(BdOptions& o) {
+  ConfigSchema schema("generate bd", "Brownian-dynamics coagulation with the DLVO potential (docs/bd.md).",
+                      "generate_bd");
+  add_bd_params(schema, o.bd);
+  schema.boolean("msd", o.msd, "Write msd.csv (t, mean squared displacement) for validation")
+      .integer("seed", o.seed, "Seed of the random generator");
+  add_checkpoint_seconds(schema, o.checkpoint_seconds);
+  return schema;
+}
+
 ConfigSchema fba_options(FbaOptions& o) {
   ConfigSchema schema("generate fba", "The force-biased algorithm (docs/opal-build.md).", "generate_fba");
   schema.integer("particles", o.particles, "Number of spheres (the box follows from diameter and aspect); or box")

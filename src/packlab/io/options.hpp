@@ -16,6 +16,7 @@
 #include "packlab/dem/engine.hpp"
 #include "packlab/dem/material.hpp"
 #include "packlab/dem/relax.hpp"
+#include "packlab/generate/brownian_dynamics.hpp"
 #include "packlab/generate/fba.hpp"
 #include "packlab/generate/lattice.hpp"
 #include "packlab/generate/ls.hpp"
@@ -87,6 +88,7 @@ ConfigSchema relax_options(RelaxRun& r);
 void add_ls_params(ConfigSchema& schema, generate::LsParams& p);
 void add_shake_params(ConfigSchema& schema, generate::ShakeParams& p);
 void add_fba_params(ConfigSchema& schema, generate::FbaParams& p);
+void add_bd_params(ConfigSchema& schema, generate::BdParams& p);
 void add_opal_params(ConfigSchema& schema, generate::OpalOptions& o);
 // output.checkpoint_seconds (--checkpoint-seconds): wall-clock seconds between two checkpoints
 // of a command that can resume (command line and config file only).
@@ -144,6 +146,16 @@ struct FbaOptions {
   Setup setup() const;
 };
 ConfigSchema fba_options(FbaOptions& o);
+
+// `packlab generate bd` / packlab.generate_bd: Brownian-dynamics coagulation with the DLVO
+// potential (generate/brownian_dynamics.hpp, docs/bd.md).
+struct BdOptions {
+  generate::BdParams bd;
+  bool msd = false;  // write msd.csv (the MSD is in the Python result always)
+  std::uint64_t seed = 1;
+  double checkpoint_seconds = 120;  // command line only
+};
+ConfigSchema bd_options(BdOptions& o);
 
 // `packlab build opal` / packlab.build_opal: an inverse-opal model from a particle packing.
 struct OpalBuildOptions {

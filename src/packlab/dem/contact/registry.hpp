@@ -9,6 +9,7 @@
 #include <variant>
 #include <vector>
 
+#include "packlab/dem/contact/dlvo.hpp"
 #include "packlab/dem/contact/hertz_mindlin.hpp"
 #include "packlab/dem/contact/linear.hpp"
 #include "packlab/dem/contact/linear_adhesive.hpp"
@@ -32,6 +33,6 @@ struct LawList {
   using variant = std::variant<Holder<Laws>...>;
 };
 
-using ContactLaws = LawList<LinearContact, HertzMindlin, LinearAdhesive>;
+using ContactLaws = LawList<LinearContact, HertzMindlin, LinearAdhesive, Dlvo>;
 
 }  // namespace packlab::dem

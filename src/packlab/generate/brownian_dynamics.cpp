@@ -1,0 +1,432 @@
+#include "packlab/generate/brownian_dynamics.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <numbers>
+
+#include "packlab/core/binary_io.hpp"
+#include "packlab/core/error.hpp"
+#include "packlab/generate/fba.hpp"
+#include "packlab/io/options.hpp"
+
+namespace packlab::generate {
+
+void BdParams::validate() const {
+  BdParams copy = *this;
+  io::ConfigSchema declared("generate bd");
+  io::add_bd_params(declared, copy);
+  declared.validate();
+  const double lambda = screening_length();
+  require(cutoff > 2.0 * min_separation, "cutoff", cutoff,
+          fmt::format("> 2 min_separation = {:g} m", 2 * min_separation));
+  require(bond_separation > 0.0 && bond_separation < cutoff, "bond_separation", bond_separation,
+          fmt::format("in (0, cutoff = {:g} m)", cutoff));
+  require(std::isfinite(lambda) && lambda > 0.0, "debye_length", lambda, "> 0 m");
+  // A periodic image may interact with a sphere only once: bonds use the minimum image.
+  const double range = 2.0 * radius + cutoff;
+  require(box_edge() > 2.0 * range, "particles", static_cast<double>(particles),
+          fmt::format("enough for a box edge > 2 (2 radius + cutoff) = {:g} m (edge {:g} m)", 2.0 * range, box_edge()));
+  const double phi0 = volume_fraction * std::pow(1.0 + 0.5 * initial_separation / radius, 3);
+  require(phi0 <= 0.62, "initial_separation", initial_separation,
+          fmt::format("small enough that the inflated start packs (volume fraction {:.3f} > 0.62)", phi0));
+}
+
+double BdParams::diffusion_coefficient() const { return kT() / (6.0 * std::numbers::pi * viscosity * radius); }
+double BdParams::diffusion_time() const { return radius * radius / diffusion_coefficient(); }
+double BdParams::screening_length() const {
+  return ionic_strength > 0.0 ? debye_length_from_ionic_strength(ionic_strength, relative_permittivity, temperature)
+                              : debye_length;
+}
+double BdParams::step() const {
+  if (time_step > 0.0) return time_step;
+  const double rms = step_fraction * screening_length();
+  return rms * rms / (2.0 * diffusion_coefficient());
+}
+dem::Dlvo::Params BdParams::dlvo() const {
+  return {0.0,
+          hamaker_constant,
+          surface_potential,
+          surface_potential,
+          screening_length(),
+          relative_permittivity,
+          min_separation,
+          cutoff};
+}
+double BdParams::box_edge() const {
+  return radius * std::cbrt(4.0 * std::numbers::pi * static_cast<double>(particles) / (3.0 * volume_fraction));
+}
+
+double debye_length_from_ionic_strength(double ionic_strength, double relative_permittivity, double temperature) {
+  return std::sqrt(relative_permittivity * dem::Dlvo::vacuum_permittivity * boltzmann_constant * temperature /
+                   (2.0 * avogadro_constant * elementary_charge * elementary_charge * ionic_strength));
+}
+
+DlvoProfile dlvo_profile(const dem::Dlvo::Params& p, double radius, double kT) {
+  DlvoProfile out;
+  const auto u = [&](double h) { return dem::Dlvo::potential(p, radius, radius, h).energy / kT; };
+  const auto f = [&](double h) { return dem::Dlvo::potential(p, radius, radius, h).force; };
+  out.cutoff_kT = u(p.cutoff);
+  // Log-spaced grid from h_min to the cut-off.
+  const int n = 4000;
+  const double ratio = std::pow(p.cutoff / p.min_separation, 1.0 / (n - 1));
+  std::vector<double> h(n), v(n);
+  for (int k = 0; k < n; ++k) {
+    h[k] = p.min_separation * std::pow(ratio, k);
+    v[k] = u(h[k]);
+  }
+  // Root of the force between a and b (sign change), by bisection.
+  const auto root = [&](double a, double b) {
+    const double fa = f(a);
+    for (int it = 0; it < 200 && b - a > 1e-15 * b; ++it) {
+      const double m = 0.5 * (a + b);
+      if ((f(m) > 0.0) == (fa > 0.0))
+        a = m;
+      else
+        b = m;
+    }
+    return 0.5 * (a + b);
+  };
+  int kmax = -1;
+  for (int k = 1; k + 1 < n; ++k)
+    if (v[k] >= v[k - 1] && v[k] > v[k + 1]) {
+      kmax = k;
+      break;
+    }
+  if (kmax < 0) return out;
+  out.has_barrier = true;
+  out.barrier_separation = root(h[kmax - 1], h[kmax + 1]);
+  out.barrier_kT = u(out.barrier_separation);
+  int kmin = -1;
+  for (int k = kmax + 1; k + 1 < n; ++k)
+    if (v[k] <= v[k - 1] && v[k] < v[k + 1]) {
+      kmin = k;
+      break;
+    }
+  if (kmin < 0) {  // still falling at the cut-off
+    out.secondary_separation = p.cutoff;
+    out.secondary_kT = out.cutoff_kT;
+  } else {
+    out.secondary_separation = root(h[kmin - 1], h[kmin + 1]);
+    out.secondary_kT = u(out.secondary_separation);
+  }
+  out.barrier_above_secondary_kT = out.barrier_kT - out.secondary_kT;
+  return out;
+}
+
+// ---- BdRun ----
+
+void BdRun::setup() {
+  params_.validate();
+  const long n = params_.particles;
+  const double a = params_.radius;
+  const double edge = params_.box_edge();
+  box_ = Box{};
+  box_.length = {edge, edge, edge};
+  box_.periodic = {true, true, true};
+  law_ = params_.dlvo();
+  dt_ = params_.step();
+  const double drag = 6.0 * std::numbers::pi * params_.viscosity * a;
+  mobility_ = 1.0 / drag;
+  noise_ = std::sqrt(2.0 * params_.diffusion_coefficient() * dt_);
+  max_drift_ = noise_;
+  bond_k_ = params_.bond_stiffness_factor * drag / dt_;
+  law_.normal_stiffness = bond_k_;
+  bond_length_ = 2.0 * a + params_.bond_separation;
+  reach2_ = (2.0 * a + params_.cutoff) * (2.0 * a + params_.cutoff);
+  const double tau = params_.diffusion_time();
+  max_steps_ = std::max(1L, static_cast<long>(std::ceil(params_.duration * tau / dt_ - 1e-9)));
+  require(max_steps_ <= 1'000'000'000'000L, "duration", params_.duration,
+          fmt::format("<= 1e12 steps of {:g} s (this is {:g} steps)", dt_, params_.duration * tau / dt_));
+  sample_every_ = std::max(1L, max_steps_ / std::max(1L, params_.samples));
+  window_steps_ = std::max(1L, static_cast<long>(std::llround(params_.stable_window * tau / dt_)));
+  radius_.assign(static_cast<std::size_t>(n), a);
+  force_.assign(static_cast<std::size_t>(n), Vec3{});
+  // Every sphere can hold max_bonds_per_sphere bonds: room for all of them, allocated once.
+  bonds_.reserve(static_cast<std::size_t>(n) * max_bonds_per_sphere / 2);
+  new_bonds_.reserve(static_cast<std::size_t>(n) * max_bonds_per_sphere / 2);
+  parent_.resize(static_cast<std::size_t>(n));
+  size_.resize(static_cast<std::size_t>(n));
+  list_.set_skin(0.1 * a);
+  list_.set_reach(params_.cutoff);
+}
+
+BdRun::BdRun(const BdParams& params, Random rng) : params_(params), rng_(std::move(rng)) {
+  setup();
+  const long n = params_.particles;
+  const double a = params_.radius;
+  // Start: force-biased packing of spheres inflated by h_0 / 2 (no gap below h_0).
+  const double inflated = a + 0.5 * params_.initial_separation;
+  FbaParams fp;
+  fp.target_porosity = 1.0 - params_.volume_fraction * std::pow(inflated / a, 3);
+  fp.tolerance = 1e-4;
+  fp.threads = params_.threads;
+  const std::vector<double> rho(static_cast<std::size_t>(n), 1.0);
+  const FbaResult start = fba_pack(box_, rho, fp, rng_);
+  if (start.status.stop != FbaStop::target_reached)
+    fail_input(fmt::format("initial_separation = {:g} m: the start could not be packed (overlap {:.3g})",
+                           params_.initial_separation, start.status.max_overlap));
+  pos_ = start.packing.position;
+  for (Vec3& p : pos_) p = box_.wrap(p);
+  start_ = pos_;
+  wraps_.assign(static_cast<std::size_t>(n), {0, 0, 0});
+  partners_.assign(static_cast<std::size_t>(n), {});
+  partner_count_.assign(static_cast<std::size_t>(n), 0);
+  status_ = measure();
+  log_.push_back(status_);
+}
+
+bool BdRun::bonded(int i, int j) const {
+  const auto& p = partners_[static_cast<std::size_t>(i)];
+  const int c = partner_count_[static_cast<std::size_t>(i)];
+  for (int k = 0; k < c; ++k)
+    if (p[static_cast<std::size_t>(k)] == j) return true;
+  return false;
+}
+
+void BdRun::add_bond(int i, int j, const Vec3& d) {
+  for (const int s : {i, j}) {
+    int& c = partner_count_[static_cast<std::size_t>(s)];
+    if (c >= max_bonds_per_sphere)
+      throw std::logic_error(fmt::format("brownian dynamics: sphere {} has {} bonds", s, c));
+    partners_[static_cast<std::size_t>(s)][static_cast<std::size_t>(c++)] = s == i ? j : i;
+  }
+  bonds_.push_back({i, j, d * (bond_length_ / norm(d))});
+}
+
+void BdRun::step(bool brownian) {
+  const int n = static_cast<int>(pos_.size());
+  if (!built_ || list_.needs_rebuild(pos_, radius_)) {
+    list_.build(box_, pos_, radius_, params_.threads, &wraps_);
+    built_ = true;
+  }
+  std::fill(force_.begin(), force_.end(), Vec3{});
+  new_bonds_.clear();
+  const double a = params_.radius;
+  const double bond_below = 2.0 * a + params_.bond_separation;
+  const std::vector<int>& partner = list_.partner();
+  const std::vector<std::uint8_t>& image = list_.image();
+  // DLVO between unbonded pairs within the cut-off, in list order.
+  for (int i = 0; i < n; ++i) {
+    const Vec3 xi = pos_[static_cast<std::size_t>(i)];
+    for (int k = list_.first(i); k < list_.first(i + 1); ++k) {
+      const int j = partner[static_cast<std::size_t>(k)];
+      if (j == i) continue;  // own image: the box is larger than twice the range
+      const Vec3 d = pos_[static_cast<std::size_t>(j)] + list_.image_offset(image[static_cast<std::size_t>(k)]) - xi;
+      const double r2 = norm2(d);
+      if (r2 >= reach2_ || bonded(i, j)) continue;
+      const double r = std::sqrt(r2);
+      if (r < bond_below) new_bonds_.push_back({i, j, d});
+      const double fn = dem::Dlvo::interaction_force(law_, a, a, r - 2.0 * a);
+      const Vec3 f = (fn / r) * d;
+      force_[static_cast<std::size_t>(j)] += f;
+      force_[static_cast<std::size_t>(i)] -= f;
+    }
+  }
+  // Bonds: F_j = -k_b (d - d_0).
+  const bool central = params_.central_bonds;
+  for (const Bond& b : bonds_) {
+    const Vec3 d = box_.minimum_image(pos_[static_cast<std::size_t>(b.j)] - pos_[static_cast<std::size_t>(b.i)]);
+    const double r = norm(d);
+    const Vec3 f = central ? (-bond_k_ * (r - bond_length_) / r) * d : -bond_k_ * (d - b.rest);
+    force_[static_cast<std::size_t>(b.j)] += f;
+    force_[static_cast<std::size_t>(b.i)] -= f;
+  }
+  for (const Bond& b : new_bonds_)
+    if (!bonded(b.i, b.j)) add_bond(b.i, b.j, b.rest);
+  // Ermak-McCammon step: drift (capped at the rms Brownian step) + Brownian displacement.
+  // One normal_distribution per step, discarded at its end: no state outside rng_ between steps.
+  std::normal_distribution<double> normal(0.0, 1.0);
+  for (int i = 0; i < n; ++i) {
+    Vec3 drift = (mobility_ * dt_) * force_[static_cast<std::size_t>(i)];
+    const double length = norm(drift);
+    if (length > max_drift_) drift *= max_drift_ / length;
+    Vec3 xi{};
+    if (brownian) {
+      xi.x = normal(rng_.engine());
+      xi.y = normal(rng_.engine());
+      xi.z = normal(rng_.engine());
+    }
+    pos_[static_cast<std::size_t>(i)] += drift + noise_ * xi;
+  }
+  if (brownian) ++step_;
+}
+
+BdStatus BdRun::measure() const {
+  BdStatus s;
+  s.step = step_;
+  s.time = static_cast<double>(step_) * dt_;
+  s.reduced_time = s.time / params_.diffusion_time();
+  s.bonds = static_cast<long>(bonds_.size());
+  s.seconds = seconds_;
+  // Clusters: union-find over the bonds.
+  const std::size_t n = pos_.size();
+  for (std::size_t i = 0; i < n; ++i) {
+    parent_[i] = static_cast<int>(i);
+    size_[i] = 1;
+  }
+  const auto find = [&](int x) {
+    while (parent_[static_cast<std::size_t>(x)] != x) {
+      parent_[static_cast<std::size_t>(x)] = parent_[static_cast<std::size_t>(parent_[static_cast<std::size_t>(x)])];
+      x = parent_[static_cast<std::size_t>(x)];
+    }
+    return x;
+  };
+  for (const Bond& b : bonds_) {
+    int x = find(b.i), y = find(b.j);
+    if (x == y) continue;
+    if (size_[static_cast<std::size_t>(x)] < size_[static_cast<std::size_t>(y)]) std::swap(x, y);
+    parent_[static_cast<std::size_t>(y)] = x;
+    size_[static_cast<std::size_t>(x)] += size_[static_cast<std::size_t>(y)];
+  }
+  double msd = 0.0;
+  for (std::size_t i = 0; i < n; ++i) {
+    if (find(static_cast<int>(i)) == static_cast<int>(i)) {
+      ++s.clusters;
+      s.largest_cluster = std::max(s.largest_cluster, static_cast<long>(size_[i]));
+    }
+    const Vec3 unwrapped = pos_[i] + box_.shift_vector(wraps_[i]);
+    msd += norm2(unwrapped - start_[i]);
+  }
+  s.msd = msd / static_cast<double>(n);
+  return s;
+}
+
+void BdRun::record() {
+  status_ = measure();
+  log_.push_back(status_);
+}
+
+bool BdRun::run(long steps, const std::function<void(const BdStatus&)>& progress) {
+  const auto t0 = std::chrono::steady_clock::now();
+  const double seconds_before = seconds_;
+  const auto elapsed = [&] {
+    return seconds_before + std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  };
+  long done = 0;
+  while (!finished_ && (steps < 0 || done < steps)) {
+    step();
+    ++done;
+    const bool last = step_ >= max_steps_;
+    const bool window_end = params_.until_stable && step_ % window_steps_ == 0;
+    if (step_ % sample_every_ == 0 || last || window_end) {
+      seconds_ = elapsed();
+      record();
+      if (progress) progress(status_);
+    }
+    if (window_end) {
+      const long now = static_cast<long>(bonds_.size());
+      if (step_ > window_steps_ && static_cast<double>(now - window_bonds_) <=
+                                       params_.stable_tolerance * static_cast<double>(std::max(now, 1L))) {
+        stable_ = true;
+        finished_ = true;
+      }
+      window_bonds_ = now;
+    }
+    if (last) finished_ = true;
+    if (finished_) {
+      for (long k = 0; k < params_.quench_steps; ++k) step(false);
+      status_ = measure();  // the quenched structure (no log row: time did not advance)
+      if (progress) progress(status_);
+    }
+  }
+  seconds_ = elapsed();
+  return finished_;
+}
+
+BdResult BdRun::result() const {
+  BdResult r;
+  r.status = measure();
+  r.status.seconds = seconds_;
+  r.stable = stable_;
+  r.log = log_;
+  r.time_step = dt_;
+  r.bond_stiffness = bond_k_;
+  const std::size_t n = pos_.size();
+  r.mean_coordination = 2.0 * static_cast<double>(bonds_.size()) / static_cast<double>(n);
+  Packing& p = r.packing;
+  p.box = box_;
+  for (std::size_t i = 0; i < n; ++i) p.add(box_.wrap(pos_[i]), radius_[i]);
+  for (const Bond& b : bonds_) {
+    // Image of j bonded to i in the wrapped positions: r_j + image L - r_i = the bond vector.
+    const Vec3 d = p.position[static_cast<std::size_t>(b.j)] - p.position[static_cast<std::size_t>(b.i)];
+    p.bonds.i.push_back(b.i);
+    p.bonds.j.push_back(b.j);
+    p.bonds.image.push_back(box_.image_shift(d));
+    p.bonds.material.push_back(0);
+    p.bonds.rest_length.push_back(bond_length_);
+    p.bonds.state.push_back(0);
+  }
+  return r;
+}
+
+// ---- checkpoints ----
+
+namespace {
+constexpr std::uint64_t bd_state_version = 1;
+}
+
+void BdRun::save_state(std::ostream& out) const {
+  binary::write(out, bd_state_version);
+  binary::write(out, params_);
+  binary::write_random(out, rng_);
+  binary::write_vector(out, pos_);
+  binary::write_vector(out, start_);
+  binary::write_vector(out, wraps_);
+  binary::write_vector(out, bonds_);
+  binary::write_vector(out, partners_);
+  binary::write_vector(out, partner_count_);
+  binary::write(out, step_);
+  binary::write(out, window_bonds_);
+  binary::write(out, finished_);
+  binary::write(out, stable_);
+  binary::write(out, status_);
+  binary::write_vector(out, log_);
+  binary::write(out, seconds_);
+  binary::write(out, built_);
+  if (built_) list_.save(out);
+}
+
+BdRun BdRun::load_state(std::istream& in, int threads) {
+  BdRun r;
+  std::uint64_t version = 0;
+  binary::read(in, version, "brownian dynamics state version");
+  if (version != bd_state_version)
+    fail_input(fmt::format("checkpoint: brownian dynamics state version {} (this packlab writes {})", version,
+                           bd_state_version));
+  binary::read(in, r.params_, "brownian dynamics parameters");
+  if (threads > 0) r.params_.threads = threads;
+  r.setup();
+  binary::read_random(in, r.rng_);
+  binary::read_vector(in, r.pos_, "positions");
+  binary::read_vector(in, r.start_, "start positions");
+  binary::read_vector(in, r.wraps_, "wraps");
+  binary::read_vector(in, r.bonds_, "bonds");
+  binary::read_vector(in, r.partners_, "bond partners");
+  binary::read_vector(in, r.partner_count_, "bond counts");
+  const std::size_t n = static_cast<std::size_t>(r.params_.particles);
+  if (r.pos_.size() != n || r.start_.size() != n || r.wraps_.size() != n || r.partners_.size() != n ||
+      r.partner_count_.size() != n)
+    fail_input("checkpoint is damaged: brownian dynamics arrays do not match the particle count");
+  binary::read(in, r.step_, "step");
+  binary::read(in, r.window_bonds_, "window bonds");
+  binary::read(in, r.finished_, "finished");
+  binary::read(in, r.stable_, "stable");
+  binary::read(in, r.status_, "status");
+  binary::read_vector(in, r.log_, "log");
+  binary::read(in, r.seconds_, "seconds");
+  binary::read(in, r.built_, "list built");
+  if (r.built_) r.list_.load(in);
+  return r;
+}
+
+BdResult brownian_dynamics(const BdParams& params, std::uint64_t seed,
+                           const std::function<void(const BdStatus&)>& progress) {
+  BdRun run(params, Random(seed));
+  run.run(-1, progress);
+  return run.result();
+}
+
+}  // namespace packlab::generate

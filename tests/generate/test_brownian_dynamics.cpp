@@ -1,0 +1,114 @@
+// Brownian-dynamics coagulation (generate/brownian_dynamics.hpp) against what does not depend on
+// the paper: free spheres diffuse with the Stokes-Einstein coefficient (MSD = 6 D_0 t, 2 D_0 t per
+// axis), the Debye length of a 1:1 electrolyte, a suspension without a barrier coagulates while
+// one behind a 60 kT barrier stays dispersed, bonds are stiff and never overlap, a checkpointed
+// run continues bit for bit, the neighbour-list thread count changes nothing, and bad input is
+// one message naming the key.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+#include <sstream>
+
+#include "../input_error.hpp"
+#include "packlab/generate/brownian_dynamics.hpp"
+
+using namespace packlab;
+using namespace packlab::generate;
+
+namespace {
+
+BdParams dense(double psi) {
+  BdParams p;
+  p.particles = 250;
+  p.volume_fraction = 0.4;
+  p.surface_potential = psi;
+  p.duration = 0.02;
+  p.samples = 10;
+  return p;
+}
+
+}  // namespace
+
+TEST(BrownianDynamics, FreeSpheresDiffuseWithTheStokesEinsteinCoefficient) {
+  BdParams p;
+  p.particles = 4000;
+  p.volume_fraction = 0.002;  // dilute: a few collisions at most
+  p.hamaker_constant = 0.0;   // no DLVO force: free diffusion
+  p.surface_potential = 0.0;
+  p.bond_separation = 1e-12;
+  p.time_step = 0.01 * p.diffusion_time();  // any step is exact for free diffusion
+  p.duration = 1.0;
+  p.samples = 10;
+  const BdResult r = brownian_dynamics(p, 7);
+  const double d0 = 1.380649e-23 * 298.15 / (6 * std::numbers::pi * 0.89e-3 * 0.25e-6);
+  EXPECT_NEAR(p.diffusion_coefficient(), d0, 1e-12 * d0);
+  ASSERT_EQ(r.log.size(), 11u);
+  // sqrt(2/3) / sqrt(N) = 1.3 % standard error of the mean squared displacement: 5 % is 4 sigma.
+  for (std::size_t k = 1; k < r.log.size(); ++k)
+    EXPECT_NEAR(r.log[k].msd / (6 * d0 * r.log[k].time), 1.0, 0.05) << "t = " << r.log[k].reduced_time;
+  EXPECT_NEAR(r.status.msd / (6 * d0 * r.status.time), 1.0, 0.03);
+  EXPECT_NEAR(r.status.reduced_time, 1.0, 1e-12);
+}
+
+TEST(BrownianDynamics, DebyeLengthOfAMillimolarMonovalentSaltIsNineSixNanometres) {
+  // 1/kappa = 0.304 nm / sqrt(I [mol/L]) for a 1:1 electrolyte in water at 25 C (Israelachvili).
+  EXPECT_NEAR(debye_length_from_ionic_strength(1.0, 78.5, 298.15), 0.304e-9 / std::sqrt(1e-3), 0.01 * 9.6e-9);
+  BdParams p;
+  p.ionic_strength = 1.0;
+  EXPECT_NEAR(p.screening_length(), 9.62e-9, 0.01e-9);
+}
+
+TEST(BrownianDynamics, CoagulatesWithoutABarrierAndStaysDispersedBehindAHighOne) {
+  const BdResult fast = brownian_dynamics(dense(0.0), 3);
+  const BdResult stable = brownian_dynamics(dense(40e-3), 3);  // barrier ~ 60 kT
+  EXPECT_GT(fast.status.bonds, 100);
+  EXPECT_LT(fast.status.clusters, 200);
+  EXPECT_EQ(stable.status.bonds, 0);
+  EXPECT_EQ(stable.status.clusters, 250);
+  // Bonded pairs sit at 2a + bond_separation within a few thermal stretches sqrt(kT / k_b).
+  const Packing& pk = fast.packing;
+  const double stretch = std::sqrt(1.380649e-23 * 298.15 / fast.bond_stiffness);
+  for (std::size_t b = 0; b < pk.bonds.i.size(); ++b) {
+    const Vec3 d = pk.position[static_cast<std::size_t>(pk.bonds.j[b])] + pk.box.shift_vector(pk.bonds.image[b]) -
+                   pk.position[static_cast<std::size_t>(pk.bonds.i[b])];
+    EXPECT_NEAR(norm(d), 2 * 0.25e-6 + 1e-9, 8 * stretch) << b;
+  }
+}
+
+TEST(BrownianDynamics, CheckpointContinuesBitForBitAndThreadsChangeNothing) {
+  BdParams p = dense(15e-3);
+  p.duration = 0.01;
+  const BdResult straight = brownian_dynamics(p, 11);
+  BdRun first(p, Random(11));
+  first.run(first.total_steps() / 2);
+  std::stringstream state;
+  first.save_state(state);
+  BdRun resumed = BdRun::load_state(state, 2);
+  resumed.run();
+  const BdResult r = resumed.result();
+  ASSERT_EQ(r.packing.size(), straight.packing.size());
+  for (std::size_t i = 0; i < r.packing.size(); ++i) {
+    EXPECT_EQ(r.packing.position[i].x, straight.packing.position[i].x) << i;
+    EXPECT_EQ(r.packing.position[i].y, straight.packing.position[i].y) << i;
+    EXPECT_EQ(r.packing.position[i].z, straight.packing.position[i].z) << i;
+  }
+  EXPECT_EQ(r.packing.bonds.i, straight.packing.bonds.i);
+  EXPECT_EQ(r.status.step, straight.status.step);
+  // A damaged state is one InputError.
+  std::string bytes = state.str();
+  std::istringstream truncated(bytes.substr(0, bytes.size() / 2));
+  EXPECT_FALSE(test::error_of([&] { BdRun::load_state(truncated); }).empty());
+}
+
+TEST(BrownianDynamics, BadInputNamesTheKeyAndItsRange) {
+  BdParams p;
+  p.volume_fraction = 0.7;
+  EXPECT_NE(test::error_of([&] { p.validate(); }).find("volume_fraction"), std::string::npos);
+  p = BdParams{};
+  p.particles = 10;  // box smaller than twice the interaction range
+  EXPECT_NE(test::error_of([&] { p.validate(); }).find("particles"), std::string::npos);
+  p = BdParams{};
+  p.bond_separation = 1e-6;
+  EXPECT_NE(test::error_of([&] { p.validate(); }).find("bond_separation"), std::string::npos);
+}
