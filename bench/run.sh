@@ -58,10 +58,10 @@ else
 fi
 # Oscillatory shear: one orientation of the N = 8000 shear case (doh §2.4), contact bonds.
 run bench_shear "$ROOT/examples/shear/data/vem_ns8000_nv2000.xyz" 1 $([ "$quick" = 1 ] && echo "2000 2" || echo "10000 10")
-# Inverse opals: FBA + opal builder (~49k particles, pore/particle 10), then compression of a
-# ~54,000-particle FCC opal: particle-steps/s, bond-steps/s, bytes per particle and per bond.
 # Brownian-dynamics coagulation: 8000 spheres at Phi = 0.4, psi_0 = 15 mV, 2000 steps.
 run bench_bd 8000 2000 15
+# Inverse opals: FBA + opal builder (~49k particles, pore/particle 10), then compression of a
+# ~54,000-particle FCC opal: particle-steps/s, bond-steps/s, bytes per particle and per bond.
 run bench_fba 10                   # prints the iterations per phase (contraction, removal at the target)
 [ "$quick" = 1 ] || run bench_fba seeds 10000 2 classic   # 10^4 spheres, first version (no momentum)
 [ "$quick" = 1 ] || run bench_fba seeds 10000 2           # ... and now: iterations, contacts, g(r)
