@@ -35,8 +35,10 @@ for s in $SCALES; do
   for seed in $SEEDS; do
     run="$OUT/s$s-seed$seed"
     [ -f "$run/compress/report.json" ] && continue  # finished before (the study can be rerun to go on)
+    # --momentum 0: the force-biased algorithm as docs/data/opal_resolution.csv was made with
+    # (before its heavy-ball overlap removal, which gives other packings of the same statistics).
     "$PACKLAB" generate fba --box "$box" --diameter 15e-9 --porosity 0.38 --periodic xy --seed "$seed" \
-      --quiet --no-plots --out "$run/packing"
+      --momentum 0 --quiet --no-plots --out "$run/packing"
     "$PACKLAB" build opal "$run/packing/packing.vtu" --pores fcc --pore-diameter "$pore" --pore-spacing "$spacing_ratio" \
       --orientation 111 --quiet --out "$run/opal"
     only_modulus=()
