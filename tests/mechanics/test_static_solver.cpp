@@ -278,25 +278,38 @@ TEST(StaticSolver, BackendsAgree) {
   EXPECT_GT(ca.shear_modulus, 0.0);
 }
 
-// After links are switched off the solver iterates with the old factor as preconditioner; the
-// answer is the one a fresh factorization of the reduced network gives.
-// Links switched off after the factorization: the downdated factor (CHOLMOD) and the
-// preconditioned conjugate gradients with the old factor (Eigen, or modify_factor off) give the
-// solution of a fresh factorization, and the links' forces (what the failure criteria read) agree.
-TEST(StaticSolver, ResolveAfterRemovingLinksEqualsAFreshFactorization) {
-  const Packing p = random_bonded_sample(300, 5);
+// A 300-particle bonded sample set up for compression and linearized for the static solver,
+// with the displacements of 0.1 % strain on its gripped particles.
+struct LinearizedSample {
+  UniaxialCompressionSpecimen specimen;
+  StaticLinks links;
+  std::vector<double> q0;
+};
+LinearizedSample linearized_sample(unsigned seed) {
   UniaxialCompressionOptions o = compression_options("static");
   UniaxialCompressionResult info;
-  const UniaxialCompressionSpecimen s = prepare_uniaxial_compression(p, o, info);
+  LinearizedSample out;
+  out.specimen = prepare_uniaxial_compression(random_bonded_sample(300, seed), o, info);
   dem::EngineConfig config;
   config.contact_law = "hertz_mindlin";
   config.types = o.types;
   config.bond_materials = o.bond_materials;
-  const StaticLinks links = linearize_links(s.model, config);
+  out.links = linearize_links(out.specimen.model, config);
+  out.q0.assign(6 * out.specimen.model.size(), 0.0);
+  for (std::size_t k = 0; k < out.specimen.model.size(); ++k)
+    if (out.specimen.grip[k]) out.q0[6 * k + 2] = -1e-3 * info.height;
+  return out;
+}
+
+// Links switched off after the factorization: the downdated factor (CHOLMOD) and the
+// preconditioned conjugate gradients with the old factor (Eigen, or modify_factor off) give the
+// solution of a fresh factorization, and the links' forces (what the failure criteria read) agree.
+TEST(StaticSolver, ResolveAfterRemovingLinksEqualsAFreshFactorization) {
+  const LinearizedSample sample = linearized_sample(5);
+  const UniaxialCompressionSpecimen& s = sample.specimen;
+  const StaticLinks& links = sample.links;
+  const std::vector<double>& q0 = sample.q0;
   ASSERT_GT(links.bonds(), 100u);
-  std::vector<double> q0(6 * s.model.size(), 0.0);
-  for (std::size_t k = 0; k < s.model.size(); ++k)
-    if (s.grip[k]) q0[6 * k + 2] = -1e-3 * info.height;
   auto switched_off = [](std::size_t k) { return k % 17 == 0 || k % 29 == 3; };
   StaticSolver fresh(links, s.model.fixed, {});
   for (std::size_t k = 0; k < links.size(); ++k)
@@ -354,18 +367,10 @@ TEST(StaticSolver, EnergyCheckOfADowndatedFactorEqualsThatOfAFreshFactorization)
   // The refinement's energy check r^T K^-1 r takes the forward half of a solve on CHOLMOD's
   // factors (LL^T fresh, LDL^T after downdates): against Eigen's full solve on the same links.
   if (static_solver_backends().front() != "cholmod") GTEST_SKIP() << "built without CHOLMOD";
-  const Packing p = random_bonded_sample(300, 7);
-  UniaxialCompressionOptions o = compression_options("static");
-  UniaxialCompressionResult info;
-  const UniaxialCompressionSpecimen s = prepare_uniaxial_compression(p, o, info);
-  dem::EngineConfig config;
-  config.contact_law = "hertz_mindlin";
-  config.types = o.types;
-  config.bond_materials = o.bond_materials;
-  const StaticLinks links = linearize_links(s.model, config);
-  std::vector<double> q0(6 * s.model.size(), 0.0);
-  for (std::size_t k = 0; k < s.model.size(); ++k)
-    if (s.grip[k]) q0[6 * k + 2] = -1e-3 * info.height;
+  const LinearizedSample sample = linearized_sample(7);
+  const UniaxialCompressionSpecimen& s = sample.specimen;
+  const StaticLinks& links = sample.links;
+  const std::vector<double>& q0 = sample.q0;
   StaticSolverOptions eigen_options;
   eigen_options.backend = "eigen";
   StaticSolver cholmod(links, s.model.fixed, {});
