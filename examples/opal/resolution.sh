@@ -54,6 +54,11 @@ done
 import csv, glob, json, os, sys
 out = sys.argv[1]
 rows = []
+def peak_breaks(curve):
+    # The bonds broken when the envelope reached its peak (the SLA curve has one row per break).
+    points = list(csv.DictReader(open(curve)))
+    return int(max(points, key=lambda p: float(p["stress"]))["broken_bonds"])
+
 for d in sorted(glob.glob(os.path.join(out, "s*-seed*"))):
     if not os.path.exists(os.path.join(d, "compress", "report.json")):
         continue
@@ -70,6 +75,7 @@ for d in sorted(glob.glob(os.path.join(out, "s*-seed*"))):
         "youngs_modulus_gpa": round(test["youngs_modulus"] * 1e-9, 5),
         "strength_mpa": "" if modulus_only else round(test["strength"] * 1e-6, 4),
         "strain_at_peak": "" if modulus_only else round(test["strain_at_peak"], 6),
+        "broken_bonds_at_peak": "" if modulus_only else peak_breaks(os.path.join(d, "compress", "curve.csv")),
         "broken_bonds": test["broken_bonds"],
         "solver_bytes": test["static_solver"]["matrix_and_factor_bytes"],
         "seconds": round(test["seconds"], 1),
