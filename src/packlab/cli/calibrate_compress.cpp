@@ -63,11 +63,8 @@ void add_calibrate_compress(CLI::App& calibrate) {
                      checkpoint_path(dir).string());
         if (run.bulk_factor) {
           // One simulation: resumable within it (the dynamic solver's checkpoints).
-          const std::vector<double> parameters{s.materials.silica_youngs_modulus, s.materials.silica_strength};
-          s.options.resume = progress.take_resume(parameters);
-          s.options.checkpoint = [&](const std::function<void(std::ostream&)>& state, bool end) {
-            if (!end) progress.checkpoint(parameters, state);
-          };
+          progress.attach({s.materials.silica_youngs_modulus, s.materials.silica_strength}, s.options.resume,
+                          s.options.checkpoint);
           const mechanics::BulkFactorResult b = mechanics::compression_bulk_factor(model, s);
           const mechanics::UniaxialCompressionResult& r = b.run;
           write_uniaxial_compression_outputs(r, s.options, dir / "final", !command.no_plots, false);

@@ -26,6 +26,15 @@ std::istream* CalibrationProgress::take_resume(const std::vector<double>& parame
   return state;
 }
 
+void CalibrationProgress::attach(const std::vector<double>& parameters, std::istream*& resume,
+                                 TestCheckpoint& test_checkpoint) {
+  resume = take_resume(parameters);
+  if (checkpoint)
+    test_checkpoint = [this, parameters](const std::function<void(std::ostream&)>& state, bool end) {
+      if (!end) checkpoint(parameters, state);
+    };
+}
+
 CalibrationResult calibrate(const ResponseFunction& response, const std::vector<double>& start,
                             const std::vector<double>& targets, const CalibrationOptions& options,
                             CalibrationProgress* progress) {

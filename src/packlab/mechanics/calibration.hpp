@@ -62,6 +62,10 @@ struct CalibrationProgress {
       checkpoint;
   // The saved state for a simulation at `parameters` (once), or null.
   std::istream* take_resume(const std::vector<double>& parameters);
+  // The hooks of the test that simulates `parameters` (its options' `resume` and `checkpoint`):
+  // the saved state if it is the running simulation, and its checkpoints within the simulation.
+  using TestCheckpoint = std::function<void(const std::function<void(std::ostream&)>& state, bool end)>;
+  void attach(const std::vector<double>& parameters, std::istream*& resume, TestCheckpoint& test_checkpoint);
 };
 
 // InputError when sizes differ, a target or start value is not positive and finite, or the

@@ -1,7 +1,5 @@
 #include "packlab/mechanics/compression_calibration.hpp"
 
-#include <functional>
-#include <ostream>
 #include <utility>
 
 #include "packlab/core/error.hpp"
@@ -26,13 +24,7 @@ CompressionCalibrationResult calibrate_compression(const Packing& model, const U
     run.materials.silica_strength = p[1];
     run.options.types = opal_particle_types(run.materials);
     run.options.bond_materials = opal_bond_materials(run.materials);
-    if (progress != nullptr) {
-      run.options.resume = progress->take_resume(p);
-      if (progress->checkpoint)
-        run.options.checkpoint = [progress, p](const std::function<void(std::ostream&)>& state, bool end) {
-          if (!end) progress->checkpoint(p, state);
-        };
-    }
+    if (progress != nullptr) progress->attach(p, run.options.resume, run.options.checkpoint);
     return run_uniaxial_compression(model, run.options);
   };
   auto response = [&](const std::vector<double>& p) {

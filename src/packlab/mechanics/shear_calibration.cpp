@@ -1,8 +1,6 @@
 #include "packlab/mechanics/shear_calibration.hpp"
 
 #include <cmath>
-#include <functional>
-#include <ostream>
 
 #include "packlab/core/error.hpp"
 #include "packlab/mechanics/calibration.hpp"
@@ -25,13 +23,7 @@ ShearCalibrationResult calibrate_normal_stiffness(const Packing& bonded, double 
     e.normal_stiffness = p[0];
     e.shear_stiffness = ratio * p[0];
     e.relax = false;
-    if (progress != nullptr) {
-      e.resume = progress->take_resume(p);
-      if (progress->checkpoint)
-        e.checkpoint = [progress, p](const std::function<void(std::ostream&)>& state, bool end) {
-          if (!end) progress->checkpoint(p, state);
-        };
-    }
+    if (progress != nullptr) progress->attach(p, e.resume, e.checkpoint);
     OscillatoryShearResult r = run_oscillatory_shear(relaxed, e);
     return std::vector<double>{r.storage_modulus_mean};
   };

@@ -65,7 +65,8 @@ struct StaticSolver::Factor {
   virtual ~Factor() = default;
   virtual void solve(const std::vector<double>& b, std::vector<double>& x) = 0;
   // r^T A^-1 r (the check of refine()); a factor that can do it with the forward half of a
-  // solve overrides this.
+  // solve overrides this and says so in forward_sweep_norm().
+  virtual bool forward_sweep_norm() const { return false; }
   virtual double inverse_norm_squared(const std::vector<double>& r) {
     std::vector<double> z(r.size());
     solve(r, z);
@@ -229,8 +230,8 @@ struct CholmodCholesky final : StaticSolver::Factor {
   // With P A P^T = L D L^T: r^T A^-1 r = y^T D^-1 y for y = L^-1 P r, the forward half of a
   // solve (D = I for LL^T). A downdated factor is simplicial LDL^T (cholmod_updown converts it),
   // whose column j starts with D_jj.
+  bool forward_sweep_norm() const override { return true; }
   double inverse_norm_squared(const std::vector<double>& r) override {
-    if (factor->is_super && !factor->is_ll) return Factor::inverse_norm_squared(r);
     cholmod_dense B = dense_view(r);
     cholmod_dense* Pr = cholmod_solve(CHOLMOD_P, factor, &B, &common);
     cholmod_dense* Y = Pr ? cholmod_solve(CHOLMOD_L, factor, Pr, &common) : nullptr;
@@ -336,8 +337,11 @@ int StaticSolver::refine(const std::vector<double>& f, std::vector<double>& x) {
     return std::sqrt(dot(r, r)) <= options_.tolerance * fnorm &&
            !(rz > options_.tolerance * options_.tolerance * std::abs(dot(x, f)));
   };
-  // The usual case after a downdate: already converged, checked with half a solve.
-  if (std::sqrt(dot(r, r)) <= options_.tolerance * fnorm && converged(factor_->inverse_norm_squared(r))) return 0;
+  // The usual case after a downdate: already converged, checked with half a solve (a factor
+  // without it checks with the solve below, whose z the iteration needs anyway).
+  if (factor_->forward_sweep_norm() && std::sqrt(dot(r, r)) <= options_.tolerance * fnorm &&
+      converged(factor_->inverse_norm_squared(r)))
+    return 0;
   factor_->solve(r, z);
   double rz = dot(r, z);
   if (converged(rz)) return 0;
