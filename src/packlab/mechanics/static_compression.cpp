@@ -66,23 +66,47 @@ UniaxialCompressionResult run_static_uniaxial_compression(const Packing& bonded_
   auto bond_params = [&](int material) -> const dem::ElasticBond::Params& {
     return params.size() == 1 ? params[0] : params[static_cast<std::size_t>(material)];
   };
-  // Plate force (compressive positive) and strain energy at unit strain.
-  auto plate_force = [&](const std::vector<double>& qs) {
-    double f = 0.0;
-    for (std::size_t k = 0; k < links.size(); ++k) {
-      if (!solver.active(k)) continue;
-      const auto i = static_cast<std::size_t>(links.i[k]), j = static_cast<std::size_t>(links.j[k]);
-      if (grip[i] == grip[j]) continue;
-      const double fz = link_response(links, k, qs, no_gradient).force_on_j.z;
-      f += grip[j] ? fz : -fz;
-    }
-    return f;
+  // After each solve at unit strain, one pass over the links: the plate force (compressive
+  // positive), the strain energy and every intact bond's failure ratio (its criteria,
+  // eq. 16-17). The sequential linear analysis does it once per break, so the pass runs on the
+  // threads, in fixed blocks summed in block order: the same sums at any thread count.
+  std::vector<double> failure_ratio(links.size(), 0.0);
+  constexpr std::size_t block = 4096;
+  const std::size_t blocks = (links.size() + block - 1) / block;
+  std::vector<double> block_force(blocks), block_energy(blocks), block_ratio(blocks);
+  std::size_t intact_bonds = 0;
+  for (std::size_t k = 0; k < links.size(); ++k) intact_bonds += links.bond[k] >= 0 ? 1 : 0;
+  struct LinkScan {
+    double plate_force = 0.0, energy = 0.0, largest_ratio = 0.0;
   };
-  auto strain_energy = [&](const std::vector<double>& qs) {
-    double e = 0.0;
-    for (std::size_t k = 0; k < links.size(); ++k)
-      if (solver.active(k)) e += link_response(links, k, qs, no_gradient).energy;
-    return e;
+  auto scan_links = [&](const std::vector<double>& qs) {
+#pragma omp parallel for schedule(static) num_threads(std::max(1, options.threads))
+    for (std::size_t b = 0; b < blocks; ++b) {
+      double force = 0.0, energy = 0.0, largest = 0.0;
+      for (std::size_t k = b * block; k < std::min(links.size(), (b + 1) * block); ++k) {
+        failure_ratio[k] = 0.0;
+        if (!solver.active(k)) continue;
+        const LinkResponse r = link_response(links, k, qs, no_gradient);
+        energy += r.energy;
+        const auto i = static_cast<std::size_t>(links.i[k]), j = static_cast<std::size_t>(links.j[k]);
+        if (grip[i] != grip[j]) force += grip[j] ? r.force_on_j.z : -r.force_on_j.z;
+        if (links.bond[k] >= 0) {
+          failure_ratio[k] = dem::ElasticBond::failure_ratio(
+              r.load, links.geometry[k], bond_params(model.bonds.material[static_cast<std::size_t>(links.bond[k])]));
+          largest = std::max(largest, failure_ratio[k]);
+        }
+      }
+      block_force[b] = force;
+      block_energy[b] = energy;
+      block_ratio[b] = largest;
+    }
+    LinkScan scan;
+    for (std::size_t b = 0; b < blocks; ++b) {
+      scan.plate_force += block_force[b];
+      scan.energy += block_energy[b];
+      scan.largest_ratio = std::max(scan.largest_ratio, block_ratio[b]);
+    }
+    return scan;
   };
 
   std::vector<double> pending = options.snapshot_strains;
@@ -126,13 +150,14 @@ UniaxialCompressionResult run_static_uniaxial_compression(const Packing& bonded_
     q = unit_q;
     solver.solve(q, no_gradient);
     unit_q = q;
-    const double stress1 = plate_force(q) / result.area;  // stress at unit strain
+    const LinkScan scan = scan_links(q);
+    const double stress1 = scan.plate_force / result.area;  // stress at unit strain
     last_stress1 = stress1;
     if (!result.breaks.empty()) {
       // The load drop at the last break's strain: stop once past the peak below stop_drop x peak.
       const double strain = result.break_strain.back();
       if (options.stop_drop > 0.0 && strain >= result.strain_at_peak && strain * stress1 < options.stop_drop * peak) {
-        add_point(strain, stress1, strain_energy(q));
+        add_point(strain, stress1, scan.energy);
         result.stop_reason = fmt::format("stress fell below {:g} x peak after the peak", options.stop_drop);
         break;
       }
@@ -144,23 +169,15 @@ UniaxialCompressionResult run_static_uniaxial_compression(const Packing& bonded_
         result.poisson_ratio = lateral / 1.0;  // axial strain -1 (compression), lateral > 0
       }
     }
-    // The next bonds to fail: the largest failure ratio at unit strain.
-    double ratio = 0.0;
+    // The next bonds to fail: the largest failure ratio at unit strain; ties (within 1e-12)
+    // break together.
+    const double ratio = scan.largest_ratio;
     std::vector<std::size_t> critical;
-    for (std::size_t k = 0; k < links.size(); ++k) {
-      if (links.bond[k] < 0 || !solver.active(k)) continue;
-      const LinkResponse r = link_response(links, k, q, no_gradient);
-      const double rk = dem::ElasticBond::failure_ratio(
-          r.load, links.geometry[k], bond_params(model.bonds.material[static_cast<std::size_t>(links.bond[k])]));
-      if (rk > ratio * (1.0 + 1e-12)) {
-        ratio = rk;
-        critical.assign(1, k);
-      } else if (rk >= ratio * (1.0 - 1e-12) && rk > 0.0) {
-        critical.push_back(k);  // ties break together
-      }
-    }
+    if (ratio > 0.0)
+      for (std::size_t k = 0; k < links.size(); ++k)
+        if (failure_ratio[k] >= ratio * (1.0 - 1e-12)) critical.push_back(k);
     const double break_strain = ratio > 0.0 ? 1.0 / ratio : std::numeric_limits<double>::infinity();
-    const double energy1 = strain_energy(q);
+    const double energy1 = scan.energy;
     while (next_snapshot < pending.size() && pending[next_snapshot] < break_strain) {
       snapshot(pending[next_snapshot], pending[next_snapshot], pending[next_snapshot] * stress1);
       ++next_snapshot;
@@ -190,9 +207,8 @@ UniaxialCompressionResult run_static_uniaxial_compression(const Packing& bonded_
       result.stop_reason = fmt::format("{} bonds broke (max_breaks)", result.breaks.size());
       break;
     }
-    bool any_bond = false;
-    for (std::size_t k = 0; k < links.size() && !any_bond; ++k) any_bond = links.bond[k] >= 0 && solver.active(k);
-    if (!any_bond) {
+    intact_bonds -= critical.size();
+    if (intact_bonds == 0) {
       result.stop_reason = "every bond broke";
       break;
     }

@@ -76,6 +76,18 @@ struct StaticSolver::Factor {
   // positive semi-definite); false when it failed (the factor is then unusable).
   virtual bool can_update() const { return false; }
   virtual bool downdate(const LinkStiffness&) { return false; }
+  // The same, keeping the forward half y = L^-1 P b of the solution of the last solve() valid
+  // for the new factor and the load b + load_change: `previous_load` is that solve's b; the
+  // entries of `load_change` (original order) on the link's unknowns are folded in and set to
+  // zero. A factor without it does a plain downdate().
+  virtual bool downdate(const LinkStiffness& s, const std::vector<double>& /*previous_load*/,
+                        std::vector<double>& /*load_change*/) {
+    return downdate(s);
+  }
+  // x = A^-1 b from the kept forward half (the backward sweep only); false when none is kept.
+  virtual bool backward_solve(std::vector<double>& /*x*/) { return false; }
+  // The kept forward half no longer belongs to the load (it changed elsewhere).
+  virtual void drop_forward() {}
   std::size_t nonzeros = 0, bytes = 0;
 };
 
@@ -142,6 +154,47 @@ struct CholmodCholesky final : StaticSolver::Factor {
   // factor (Davis & Hager's multiple-rank modification, cholmod_updown) that touches only the
   // columns on the elimination-tree paths of the link's unknowns instead of refactorizing.
   bool downdate(const LinkStiffness& s) override {
+    forward_valid = false;  // cholmod_updown alone leaves it behind
+    return modify(s, nullptr);
+  }
+  // Sequential linear analysis re-solves after every break: with the forward half y = L^-1 P b
+  // carried through the downdate (cholmod_updown_solve touches only the columns on the link's
+  // elimination-tree paths), a re-solve is the backward sweep alone, one triangular sweep of
+  // the factor instead of two.
+  bool downdate(const LinkStiffness& s, const std::vector<double>& previous_load,
+                std::vector<double>& load_change) override {
+    if (!forward_valid && !start_forward(previous_load)) return false;
+    return modify(s, &load_change);
+  }
+  bool backward_solve(std::vector<double>& x) override {
+    if (!forward_valid) return false;
+    // P A P^T = L D L^T: x = P^T L^-T D^-1 y.
+    cholmod_dense* Z = cholmod_solve(CHOLMOD_DLt, factor, forward, &common);
+    cholmod_dense* X = Z ? cholmod_solve(CHOLMOD_Pt, factor, Z, &common) : nullptr;
+    if (!X) throw std::runtime_error("static solver: CHOLMOD solve failed");
+    const auto* xs = static_cast<const double*>(X->x);
+    std::copy(xs, xs + x.size(), x.begin());
+    cholmod_free_dense(&X, &common);
+    cholmod_free_dense(&Z, &common);
+    return true;
+  }
+  void drop_forward() override { forward_valid = false; }
+  // The forward half of `load` on the factor turned simplicial LDL^T, as cholmod_updown would
+  // turn it (unpacked, so that columns can grow).
+  bool start_forward(const std::vector<double>& load) {
+    if (!cholmod_change_factor(CHOLMOD_REAL, false, false, false, false, factor, &common)) return false;
+    if (forward) cholmod_free_dense(&forward, &common);
+    cholmod_dense B = dense_view(load);
+    cholmod_dense* Pb = cholmod_solve(CHOLMOD_P, factor, &B, &common);
+    forward = Pb ? cholmod_solve(CHOLMOD_L, factor, Pb, &common) : nullptr;
+    cholmod_free_dense(&Pb, &common);
+    if (!forward) return false;
+    if (!load_delta) load_delta = cholmod_zeros(load.size(), 1, CHOLMOD_REAL, &common);
+    forward_valid = load_delta != nullptr;
+    return forward_valid;
+  }
+  // The downdate A - S, with the forward half carried along when load_change is given.
+  bool modify(const LinkStiffness& s, std::vector<double>* load_change) {
     if (s.size == 0) return true;
     using Small = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::ColMajor, 12, 12>;
     // Translations (N/m) and rotations (N m/rad) differ by ~r^2 (1e-14 for a 100 nm particle):
@@ -192,10 +245,27 @@ struct CholmodCholesky final : StaticSolver::Factor {
       }
     }
     cp[column] = at;
-    const int ok = cholmod_updown(0, C, factor, &common);
+    int ok = 0;
+    if (load_change) {
+      // The load's change on the link's unknowns (the link's own pull on a prescribed
+      // neighbour), in the factor's row order; zero elsewhere, and zero again on return.
+      auto* delta = static_cast<double*>(load_delta->x);
+      for (int e = 0; e < s.size; ++e) {
+        const auto u = static_cast<std::size_t>(s.unknown[static_cast<std::size_t>(e)]);
+        delta[permuted_row[u]] = (*load_change)[u];
+        (*load_change)[u] = 0.0;
+      }
+      ok = cholmod_updown_solve(0, C, factor, forward, load_delta, &common);
+      if (!ok) forward_valid = false;
+    } else {
+      ok = cholmod_updown(0, C, factor, &common);
+    }
     cholmod_free_sparse(&C, &common);
     return ok && common.status == CHOLMOD_OK;
   }
+  cholmod_dense* forward = nullptr;     // y = L^-1 P b of the last solve (factor's row order)
+  cholmod_dense* load_delta = nullptr;  // workspace of cholmod_updown_solve, all zero between calls
+  bool forward_valid = false;
   [[noreturn]] void fail(const char* what) {
     const int status = common.status;
     release();
@@ -204,6 +274,8 @@ struct CholmodCholesky final : StaticSolver::Factor {
     throw std::runtime_error(fmt::format("static solver: CHOLMOD {} failed (status {})", what, status));
   }
   void release() {
+    if (forward) cholmod_free_dense(&forward, &common);
+    if (load_delta) cholmod_free_dense(&load_delta, &common);
     if (factor) cholmod_free_factor(&factor, &common);
     cholmod_finish(&common);
   }
@@ -221,6 +293,7 @@ struct CholmodCholesky final : StaticSolver::Factor {
   }
   void solve(const std::vector<double>& b, std::vector<double>& x) override {
     cholmod_dense B = dense_view(b);
+    forward_valid = false;
     cholmod_dense* X = cholmod_solve(CHOLMOD_A, factor, &B, &common);
     if (!X) throw std::runtime_error("static solver: CHOLMOD solve failed");
     const auto* xs = static_cast<const double*>(X->x);
@@ -287,6 +360,7 @@ void StaticSolver::factorize() {
   matrix_changed_ = false;
   factor_valid_ = true;
   downdates_since_factorization_ = 0;
+  pending_downdates_.clear();  // the assembly above has only the active links
 }
 
 void StaticSolver::deactivate(std::size_t k) {
@@ -294,16 +368,38 @@ void StaticSolver::deactivate(std::size_t k) {
   active_[k] = 0;
   if (!factor_) return;  // the first factorization assembles the active links
   if (options_.modify_factor && factor_valid_ && !matrix_changed_ && factor_->can_update()) {
-    // Keep matrix and factor those of the active links: take the link out of both.
-    const auto t0 = std::chrono::steady_clock::now();
+    // Keep matrix and factor those of the active links: the link leaves the matrix now and
+    // the factor at the next solve, which knows the new load (downdate_pending()).
     assembly_.add_link(k, -1.0);
-    if (!factor_->downdate(assembly_.free_link_stiffness(k))) factor_valid_ = false;  // factorize anew
-    ++downdates_since_factorization_;
-    ++stats_.downdates;
-    stats_.downdate_seconds += seconds_since(t0);
+    pending_downdates_.push_back(k);
   } else {
     matrix_changed_ = true;
   }
+}
+
+void StaticSolver::downdate_pending(const std::vector<double>& f) {
+  if (pending_downdates_.empty()) return;
+  const auto t0 = std::chrono::steady_clock::now();
+  // The load's change since the last solve: each link's share goes into the factor's kept
+  // forward solution with that link's downdate; whatever is left elsewhere (another q or
+  // gradient) means a full solve.
+  const bool carry = last_load_.size() == f.size();
+  std::vector<double> change(f.size(), 0.0);
+  if (carry)
+    for (std::size_t r = 0; r < f.size(); ++r) change[r] = f[r] - last_load_[r];
+  for (std::size_t k : pending_downdates_) {
+    const LinkStiffness s = assembly_.free_link_stiffness(k);
+    const bool ok = carry ? factor_->downdate(s, last_load_, change) : factor_->downdate(s);
+    ++downdates_since_factorization_;
+    ++stats_.downdates;
+    if (!ok) {
+      factor_valid_ = false;  // factorize anew
+      break;
+    }
+  }
+  pending_downdates_.clear();
+  if (!carry || std::any_of(change.begin(), change.end(), [](double v) { return v != 0.0; })) factor_->drop_forward();
+  stats_.downdate_seconds += seconds_since(t0);
 }
 
 double StaticSolver::inverse_norm_squared(const std::vector<double>& r) const {
@@ -365,16 +461,20 @@ int StaticSolver::refine(const std::vector<double>& f, std::vector<double>& x) {
 }
 
 void StaticSolver::solve(std::span<double> q, const DisplacementGradient& gradient) {
+  const std::vector<double> f = assembly_.load(q, gradient, active_);
+  if (factor_ && factor_valid_) downdate_pending(f);
   if (!factor_ || !factor_valid_) factorize();
   const auto t0 = std::chrono::steady_clock::now();
-  const std::vector<double> f = assembly_.load(q, gradient, active_);
   const std::size_t n = assembly_.unknowns();
   std::vector<double> x(n, 0.0);
   const int saved_threads = omp_get_max_threads();
   omp_set_num_threads(std::max(1, options_.threads));
   bool solved = true;
   if (!matrix_changed_) {
-    factor_->solve(f, x);
+    if (factor_->backward_solve(x))
+      ++stats_.backward_only_solves;
+    else
+      factor_->solve(f, x);
     // A downdated factor carries the rounding of its modifications: check the solution on the
     // matrix of the active links and refine.
     if (downdates_since_factorization_ > 0) solved = refine(f, x) >= 0;
@@ -392,6 +492,7 @@ void StaticSolver::solve(std::span<double> q, const DisplacementGradient& gradie
   }
   omp_set_num_threads(saved_threads);
   assembly_.scatter(x, q);
+  last_load_ = f;
   ++stats_.solves;
   stats_.solve_seconds += seconds_since(t0);
 }

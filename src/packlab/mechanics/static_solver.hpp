@@ -51,7 +51,8 @@ struct StaticSolverStats {
   int factorizations = 0;
   long solves = 0;
   long pcg_iterations = 0;
-  long downdates = 0;  // links taken out of the factor by a rank update
+  long downdates = 0;             // links taken out of the factor by a rank update
+  long backward_only_solves = 0;  // solves from the forward half kept through the downdates
   double assemble_seconds = 0.0, factor_seconds = 0.0, solve_seconds = 0.0, downdate_seconds = 0.0;
 };
 
@@ -66,7 +67,8 @@ class StaticSolver {
   // Solves for the free particles. q (6 per particle: u, theta): the prescribed particles'
   // entries are read, the free ones written.
   void solve(std::span<double> q, const DisplacementGradient& gradient);
-  // Takes link k out of the model (a broken bond) from the next solve on.
+  // Takes link k out of the model (a broken bond) from the next solve on (with CHOLMOD: out
+  // of the factor by a downdate at that solve).
   void deactivate(std::size_t k);
   bool active(std::size_t k) const { return active_[k] != 0; }
   const std::vector<std::uint8_t>& active_links() const { return active_; }
@@ -80,6 +82,9 @@ class StaticSolver {
 
  private:
   void factorize();
+  // Takes the links deactivated since the last solve out of the factor, carrying its kept
+  // forward solution over to the new load f.
+  void downdate_pending(const std::vector<double>& f);
   int refine(const std::vector<double>& f, std::vector<double>& x);
   const StaticLinks& links_;
   StaticSolverOptions options_;
@@ -89,6 +94,8 @@ class StaticSolver {
   bool matrix_changed_ = false;  // links deactivated and not taken out of the factor
   bool factor_valid_ = false;    // false after a failed downdate
   long downdates_since_factorization_ = 0;
+  std::vector<std::size_t> pending_downdates_;  // deactivated, still in the factor
+  std::vector<double> last_load_;               // the right-hand side of the last solve
   StaticSolverStats stats_;
 };
 
