@@ -6,6 +6,12 @@
 #     g22 for N = 2000 (CRM and SCRM) and N = 7000 (SCRM, M = 3 global shakes);
 #  3. the shell count I(r) of a simple cubic lattice for four bin widths;
 #  4. fast compression of 10,000 monodisperse spheres to jamming at several growth rates.
+# The packings are four studies (docs/study.md): examples/study/scrm_paper.toml (1, 2 at
+# N = 2000), scrm_bi7000.toml, scrm_lattice.toml (3) and scrm_jamming.toml (4), run by
+# `packlab study` into OUT/paper, OUT/bi7000, OUT/lattice, OUT/jamming. The folders of the
+# summary (OUT/mono-ls-c0.6/r1, OUT/jam-G0.02, OUT/sc-dr0.01, ...) link to their runs; the
+# averaged RDFs (one `packlab analyze rdf` over the realizations of a case) and summarize.py
+# follow.
 # usage: examples/scrm/run_paper.sh [OUT=scrm-paper] [P=8] [JOBS=2]
 # Needs `packlab` on PATH (or PACKLAB=path/to/packlab). Takes about an hour on two cores.
 set -euo pipefail
@@ -14,54 +20,51 @@ P=${2:-8}
 JOBS=${3:-2}
 PACKLAB=${PACKLAB:-packlab}
 HERE=$(cd "$(dirname "$0")" && pwd)
+SPECS="$HERE/../study"
 mkdir -p "$OUT"
-export PACKLAB OUT
 
-# LS growth rate of the "CRM" packings (G = ds/dt, docs/scrm.md) and the SCRM schedule:
-# shake once every 5 LS blocks during growth, then M = 10 global shakes at c (R_sh = 0.02,
-# N_sh = 150: the paper's optimum).
-RATE=0.02
-run_case() {  # kind c seed extra...
-  local kind=$1 c=$2 seed=$3; shift 3
-  local dir="$OUT/$kind-c$c/r$seed"
-  [ -f "$dir/report.json" ] && return 0
-  "$PACKLAB" generate "$@" --phi "$c" --growth-rate "$RATE" --seed "$seed" --out "$dir" --no-plots --quiet
-}
-export -f run_case
-export RATE
+# P realizations per curve: the SPEC has seeds 1-8; another P gets a copy with seeds 1-P.
+paper="$SPECS/scrm_paper.toml"
+if [ "$P" != 8 ]; then
+  paper="$OUT/scrm_paper_P$P.toml"
+  sed "s/^seeds = .*/seeds = [$(seq -s, 1 "$P")]/" "$SPECS/scrm_paper.toml" > "$paper"
+fi
+"$PACKLAB" study "$paper" --out "$OUT/paper" --workers "$JOBS"
+for s in bi7000 lattice jamming; do
+  "$PACKLAB" study "$SPECS/scrm_$s.toml" --out "$OUT/$s" --workers "$JOBS"
+done
 
-jobs=()
-for c in 0.575 0.6 0.63; do
-  for s in $(seq 1 "$P"); do
-    jobs+=("mono-ls $c $s ls --particles 2000")
-    jobs+=("mono-scrm $c $s scrm --particles 2000 --final-shakes 10")
-  done
-done
-for s in $(seq 1 "$P"); do
-  jobs+=("bi-ls 0.6 $s ls --particles 2000 --sizes 1,0.313 --volume-fractions 0.75,0.25")
-  jobs+=("bi-scrm 0.6 $s scrm --particles 2000 --sizes 1,0.313 --volume-fractions 0.75,0.25 --final-shakes 10")
-done
-for s in 1 2; do
-  jobs+=("bi7000-scrm 0.6 $s scrm --particles 7000 --sizes 1,0.313 --volume-fractions 0.75,0.25 --final-shakes 3")
-done
-printf '%s\n' "${jobs[@]}" | xargs -P "$JOBS" -I{} bash -c 'run_case {}'
+# The folders of the summary, linked to the studies' runs.
+/usr/bin/python3 - "$OUT" <<'PY'
+import csv, os, sys
+out = sys.argv[1]
+
+def rows(study):
+    with open(os.path.join(out, study, "tasks.csv"), newline="") as f:
+        return [r for r in csv.DictReader(f) if r["status"] == "done"]
+
+def link(target, name):
+    path = os.path.join(out, name)
+    os.makedirs(os.path.dirname(path), exist_ok=True)
+    if os.path.islink(path):
+        os.remove(path)
+    os.symlink(os.path.relpath(os.path.join(out, target), os.path.dirname(path)), path)
+
+for r in rows("paper"):
+    case = f"{'bi' if r['sizes'] != 'false' else 'mono'}-{r['method']}-c{r['phi']}"
+    link(f"paper/runs/generate-{r['task']}", f"{case}/r{r['seed']}")
+for r in rows("bi7000"):
+    link(f"bi7000/runs/scrm-{r['task']}", f"bi7000-scrm-c0.6/r{r['seed']}")
+for r in rows("jamming"):
+    link(f"jamming/runs/ls-{r['task']}", f"jam-G{r['growth-rate']}")
+for r in rows("lattice"):
+    link(f"lattice/runs/rdf-{r['task']}", f"sc-dr{r['rdf.dr']}")
+PY
 
 # Averaged RDFs (realizations in parallel inside analyze rdf).
 for d in "$OUT"/mono-*-c* "$OUT"/bi-*-c* "$OUT"/bi7000-*-c*; do
   [ -f "$d/rdf/report.json" ] && continue
   "$PACKLAB" analyze rdf "$d"/r*/packing.xyz --partial --dr 0.01 --r-max 10 --out "$d/rdf" --quiet
-done
-
-# Simple cubic lattice: I(r) for four bin widths (radius 1, lattice spacing 2).
-"$PACKLAB" generate lattice --type sc --cells 6 6 6 --radius 1 --out "$OUT/sc.xyz" --quiet
-for dr in 0.1 0.01 0.005 0.003; do
-  "$PACKLAB" analyze rdf "$OUT/sc.xyz" --dr "$dr" --r-max 5 --out "$OUT/sc-dr$dr" --no-plots --quiet
-done
-
-# Fast compression of 10,000 spheres to jamming (reduced pressure 1e12) at several rates.
-for g in 0.02 0.04 0.1 0.3 1 3; do
-  [ -f "$OUT/jam-G$g/report.json" ] && continue
-  "$PACKLAB" generate ls --particles 10000 --growth-rate "$g" --seed 42 --out "$OUT/jam-G$g" --no-plots --quiet
 done
 
 /usr/bin/python3 "$HERE/summarize.py" "$OUT"

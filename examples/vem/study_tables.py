@@ -5,6 +5,10 @@
   DATA/vem_curves.csv   every run's CN(q) curve (name, q, cn, phi_total), 6 digits
   DATA/vem_fig1_cn_curve.csv   the Fig. 1 run's cn_curve.csv as written (if it ran)
 
+OUT is the folder of examples/vem/study.sh: one study folder per group (OUT/GROUP/tasks.csv,
+docs/study.md); the runs keep the names of the script before the studies (n025, phi02,
+stiffness_kns1e3_knv1e1, ...). A folder of that older layout (OUT/NAME/report.json) is read too.
+
 usage: study_tables.py OUT [DATA]   (DATA defaults to docs/data of this checkout)"""
 
 import csv
@@ -20,10 +24,12 @@ def main(argv):
     here = os.path.dirname(os.path.abspath(__file__))
     data = argv[2] if len(argv) > 2 else os.path.join(here, "..", "..", "docs", "data")
     os.makedirs(data, exist_ok=True)
-    runs = sorted(d for d in os.listdir(out) if os.path.isfile(os.path.join(out, d, "report.json")))
+    folders = study_runs(out)
+    folders.update({d: os.path.join(out, d) for d in os.listdir(out) if os.path.isfile(os.path.join(out, d, "report.json"))})
+    runs = sorted(folders)
     study_rows, curve_rows = [], []
     for name in runs:
-        with open(os.path.join(out, name, "report.json")) as f:
+        with open(os.path.join(folders[name], "report.json")) as f:
             r = json.load(f)
         p = r["parameters"]
         i = r["inflection"]
@@ -46,7 +52,7 @@ def main(argv):
             "beta_r2": f"{r['beta_r2']:.6g}", "cycles": r["cycles"], "steps": r["steps"],
             "seconds": f"{r['seconds']:.4g}", "threads": r["threads"], "stop": r["stop_reason"],
         })
-        with open(os.path.join(out, name, "cn_curve.csv")) as f:
+        with open(os.path.join(folders[name], "cn_curve.csv")) as f:
             lines = [line for line in f if not line.startswith("#")]
         q, cn = [], []
         for row in csv.DictReader(lines):
@@ -62,12 +68,45 @@ def main(argv):
           "sqrt(fit error^2 + window change^2); kn_ratio = k_n,V / k_n,S; seconds = wall time")
     write(os.path.join(data, "vem_curves.csv"), curve_rows,
           "CN(q) curves of examples/vem/study.sh (examples/vem/study_tables.py)")
-    fig1 = os.path.join(out, "fig1", "cn_curve.csv")
-    if os.path.isfile(fig1):
-        shutil.copyfile(fig1, os.path.join(data, "vem_fig1_cn_curve.csv"))
-        shutil.copyfile(os.path.join(out, "fig1", "report.json"), os.path.join(data, "vem_fig1_report.json"))
+    if "fig1" in folders:
+        shutil.copyfile(os.path.join(folders["fig1"], "cn_curve.csv"), os.path.join(data, "vem_fig1_cn_curve.csv"))
+        shutil.copyfile(os.path.join(folders["fig1"], "report.json"), os.path.join(data, "vem_fig1_report.json"))
     print(f"{len(study_rows)} runs -> {data}/vem_study.csv, vem_curves.csv ({len(curve_rows)} rows)")
     return 0
+
+
+def run_name(group, row):
+    """The name examples/vem/study.sh gave a run before the studies, from its group and its row
+    of tasks.csv."""
+    if group == "dt":
+        cfg = "" if row["cfg"] == "default" else f"_{row['cfg']}"
+        return f"n050{cfg}_seed{row['seed']}"
+    if group == "n":
+        return f"n{int(row['voids']) // 10:03d}"
+    if group == "size":
+        return f"n050_ns{row['structural']}"
+    if group == "phi":
+        return "phi" + row["phi-s"].replace(".", "")
+    if group == "mass":
+        return "n050_mass025"
+    if group == "stiffness":
+        return f"stiffness_kns1e3_knv{row['knv']}"
+    return group  # fig1
+
+
+def study_runs(out):
+    """name -> run folder of the finished runs of the studies OUT/GROUP (examples/study/vem_GROUP.toml)."""
+    found = {}
+    for group in sorted(os.listdir(out)):
+        tasks = os.path.join(out, group, "tasks.csv")
+        if not os.path.isfile(tasks):
+            continue
+        with open(tasks, newline="") as f:
+            for row in csv.DictReader(f):
+                folder = os.path.join(out, group, "runs", f"vem-{row['task']}")
+                if row["status"] == "done" and os.path.isfile(os.path.join(folder, "report.json")):
+                    found[run_name(group, row)] = folder
+    return found
 
 
 def largest_difference_quotient(q, cn, step):

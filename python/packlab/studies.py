@@ -38,9 +38,9 @@ STDERR_NAME = "study-stderr.txt"
 FAILURE_NAME = "study-failure.json"
 WALL_NAME = "study-wall.json"
 STDERR_TAIL_LINES = 20
-SPEC_KEYS = {"command", "args", "options", "seed_option", "out_option", "stage", "sweep", "combine", "seed",
+SPEC_KEYS = {"command", "args", "options", "seed_option", "out_option", "out_file", "stage", "sweep", "combine", "seed",
              "realizations", "seeds", "collect", "name"}
-STAGE_KEYS = {"name", "command", "args", "options", "seed_option", "out_option"}
+STAGE_KEYS = {"name", "command", "args", "options", "seed_option", "out_option", "out_file"}
 RANGE_KEYS = {"start", "stop", "num", "step"}
 
 
@@ -106,9 +106,14 @@ def _stage(table, where):
     for name, value in options.items():
         _require(isinstance(value, (str, int, float, bool)),
                  f"{where}.options.{name} = {value!r}: must be a number, text or boolean (true: a flag)")
+    out_file = table.get("out_file", "")
+    _require(isinstance(out_file, str) and "/" not in out_file and out_file not in (".", "..", "report.json"),
+             f"{where}.out_file = {out_file!r}: must be a file name such as \"bonded.vtu\" (no folder, not report.json)")
+    _require(not out_file or table.get("out_option", "out"),
+             f"{where}.out_file = {out_file!r} needs an out_option to pass it with")
     return {"name": table.get("name", command.split()[-1]), "command": command.split(), "args": [str(a) for a in args],
             "options": dict(options), "seed_option": table.get("seed_option"),
-            "out_option": table.get("out_option", "out")}
+            "out_option": table.get("out_option", "out"), "out_file": out_file}
 
 
 def load_spec(spec, spec_dir=None):
@@ -282,12 +287,15 @@ def plan(spec, out):
                         if template is not True:
                             argv_run.append(_text(run_value))
                             argv_hash.append(_text(hash_value))
+                if stage["out_file"]:  # a command writing one file: its name is part of the command
+                    argv_hash += ["--" + stage["out_option"], stage["out_file"]]
                 key = hashlib.sha256(json.dumps(argv_hash).encode()).hexdigest()[:16]
                 directory = os.path.join(out, RUNS, f"{stage['name']}-{key}")
                 if stage["out_option"]:
-                    argv_run += ["--" + stage["out_option"], directory]
+                    argv_run += ["--" + stage["out_option"], os.path.join(directory, stage["out_file"]) if
+                                 stage["out_file"] else directory]
                 units.setdefault(key, {"key": key, "stage": stage["name"], "argv": argv_run, "dir": directory,
-                                       "deps": deps})
+                                       "deps": deps, "out_file": stage["out_file"]})
                 keys[stage["name"]] = key
                 dirs[stage["name"]] = directory
             tasks.append({"point": point, "realization": realization, "seed": seed,
@@ -343,6 +351,13 @@ def run_unit(unit, packlab, dep_results=()):
                 stderr_text = None
         seconds = time.monotonic() - start
         result["seconds"] = seconds
+        out_file = unit.get("out_file")
+        if code == 0 and out_file and os.path.isfile(os.path.join(directory, out_file)) and not is_done(directory):
+            # A command that writes one file and no report (bond, generate lattice): the runner
+            # writes the report that marks the run done, still holding the lock.
+            _write_json(os.path.join(directory, "report.json"),
+                        {"study_output": out_file, "bytes": os.path.getsize(os.path.join(directory, out_file)),
+                         "seconds": seconds, "command": [os.path.basename(packlab), *unit["argv"]]})
         if code == 0 and is_done(directory):
             _write_json(os.path.join(directory, WALL_NAME), {"seconds": seconds})
             result["status"] = "done"

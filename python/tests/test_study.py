@@ -37,6 +37,9 @@ FAKE = textwrap.dedent("""\
                 opts[argv[k][2:]] = True; k += 1
         else:
             k += 1
+    if os.environ.get("FAKE_STARTED"):  # who runs it (the parent: a runner or a Dask worker) and where
+        with open(os.environ["FAKE_STARTED"], "a") as f:
+            f.write(str(os.getppid()) + " " + opts.get("out", "-") + "\\n")
     time.sleep(float(opts.get("sleep", 0.05)))
     value = float(opts.get("value", 0))
     if "fail-above" in opts and value > float(opts["fail-above"]):
@@ -261,27 +264,55 @@ def test_kill_9_and_resume_runs_nothing_twice(tmp_path, fake):
     assert all(r["status"] == "done" for r in read_csv(out / "tasks.csv"))
 
 
+class LocalCluster:
+    """A Dask scheduler and two workers (one thread each, no nanny: a killed worker stays dead) on
+    this machine, as separate processes; ``workers`` are their Popen objects."""
+
+    def __init__(self, tmp_path, env):
+        import socket
+
+        with socket.socket() as s:
+            s.bind(("127.0.0.1", 0))
+            port = s.getsockname()[1]
+        self.address = f"tcp://127.0.0.1:{port}"
+        self.logs = open(tmp_path / "dask.log", "w")
+        self.scheduler = subprocess.Popen([sys.executable, "-m", "distributed.cli.dask_scheduler", "--host",
+                                           "127.0.0.1", "--port", str(port), "--no-dashboard"],
+                                          env=env, stdout=self.logs, stderr=self.logs)
+        self.workers = [subprocess.Popen([sys.executable, "-m", "distributed.cli.dask_worker", self.address,
+                                          "--nthreads", "1", "--no-nanny", "--no-dashboard"],
+                                         env=env, stdout=self.logs, stderr=self.logs) for _ in range(2)]
+
+    def __enter__(self):
+        try:
+            from distributed import Client
+
+            with Client(self.address, timeout="20s") as client:
+                client.wait_for_workers(2, timeout=30)
+        except BaseException:
+            self.__exit__()
+            raise
+        return self
+
+    def __exit__(self, *exc):
+        processes = [*self.workers, self.scheduler]
+        for p in processes:
+            if p.poll() is None:
+                p.terminate()
+        for p in processes:
+            try:
+                p.wait(timeout=10)
+            except subprocess.TimeoutExpired:
+                p.kill()
+                p.wait()
+        self.logs.close()
+
+
 def test_dask_cluster(tmp_path, fake):
     pytest.importorskip("distributed")
-    import socket
-
-    with socket.socket() as s:
-        s.bind(("127.0.0.1", 0))
-        port = s.getsockname()[1]
-    address = f"tcp://127.0.0.1:{port}"
     env = {**os.environ, "PYTHONPATH": PYTHON_DIR, "FAKE_MARKER": str(fake["marker"])}
-    logs = open(tmp_path / "dask.log", "w")
-    processes = [subprocess.Popen([sys.executable, "-m", "distributed.cli.dask_scheduler", "--host", "127.0.0.1",
-                                   "--port", str(port), "--no-dashboard"], env=env, stdout=logs, stderr=logs)]
-    try:
-        for _ in range(2):
-            processes.append(subprocess.Popen([sys.executable, "-m", "distributed.cli.dask_worker", address,
-                                               "--nthreads", "1", "--no-nanny", "--no-dashboard"],
-                                              env=env, stdout=logs, stderr=logs))
-        from distributed import Client
-
-        with Client(address, timeout="20s") as client:
-            client.wait_for_workers(2, timeout=30)
+    with LocalCluster(tmp_path, env) as cluster:
+        address = cluster.address
         spec = write_spec(tmp_path / "s.toml", SIMPLE.replace("sleep = 0.05", "sleep = 0.05\nfail-above = 1.5"))
         out = tmp_path / "study"
         outcome = studies.study(spec, out, scheduler=address, packlab=fake["binary"], quiet=True)
@@ -290,15 +321,69 @@ def test_dask_cluster(tmp_path, fake):
         assert [r["status"] for r in rows] == ["done"] * 3 + ["failed"] * 3
         again = studies.study(spec, out, scheduler=address, packlab=fake["binary"], quiet=True)
         assert again["ran"] == 0 and len(runs(fake)) == 3
-    finally:
-        for p in reversed(processes):
-            p.terminate()
-        for p in processes:
-            try:
-                p.wait(timeout=10)
-            except subprocess.TimeoutExpired:
-                p.kill()
-        logs.close()
+
+
+def test_dask_worker_killed_every_task_once(tmp_path, fake):
+    """kill -9 of one of two Dask workers while it runs a stage (and holds the result of one it
+    finished): the study still ends with every stage run completed exactly once. The worker's
+    orphaned packlab process finishes its run and keeps the lock; the scheduler gives the
+    task to the other worker, which waits for the lock and finds the report; the lost result
+    of the finished run is recomputed as a skip."""
+    pytest.importorskip("distributed")
+    started = tmp_path / "started.txt"
+    started.write_text("")
+    env = {**os.environ, "PYTHONPATH": PYTHON_DIR, "FAKE_MARKER": str(fake["marker"]), "FAKE_STARTED": str(started)}
+    spec = write_spec(tmp_path / "s.toml", """\
+        seeds = [1, 2]
+        collect = ["gen.results.value", "results.value"]
+        [[stage]]
+        name = "gen"
+        command = "generate fake"
+        options = { value = 10, sleep = 0.3 }
+        [[stage]]
+        name = "test"
+        command = "test fake"
+        args = ["{gen}/report.json"]
+        options = { sleep = 0.6 }
+        [sweep]
+        test.value = [1, 2, 3]
+        """)
+    out = tmp_path / "study"
+    with LocalCluster(tmp_path, env) as cluster:
+        victim = cluster.workers[0]
+        runner = subprocess.Popen([sys.executable, "-m", "packlab.studies", spec, "--out", str(out), "--scheduler",
+                                   cluster.address, "--packlab", fake["binary"], "--quiet"], env=env)
+        try:
+            def victim_runs():  # the runs the victim started, in order (the stand-in's parent is the worker)
+                lines = [line.split() for line in started.read_text().splitlines()]
+                return [folder for pid, folder in lines if int(pid) == victim.pid]
+
+            def victim_busy():  # it finished one run and is in the middle of a second one
+                mine = victim_runs()
+                return len(mine) >= 2 and mine[-1] not in runs(fake) and mine[0] in runs(fake)
+
+            _wait_for(lambda: victim_busy() or runner.poll() is not None, timeout=60)
+            assert runner.poll() is None, "the study ended before the victim worker ran two stage runs"
+            victim.send_signal(signal.SIGKILL)
+            victim.wait()
+            killed_in = victim_runs()[-1]
+            assert runner.wait(timeout=120) == 0
+        finally:
+            if runner.poll() is None:
+                runner.kill()
+                runner.wait()
+    completed = runs(fake)
+    # 2 packings + 6 tests, each completed exactly once; the one the worker died in among them
+    # (its orphan finished it), none started a second time to completion.
+    assert len(completed) == 8 and len(set(completed)) == 8
+    assert killed_in in completed
+    rows = read_csv(out / "tasks.csv")
+    assert len(rows) == 6 and all(r["status"] == "done" for r in rows)
+    for r in rows:
+        assert float(r["results.value"]) == float(r["gen.results.value"]) + float(r["test.value"])
+    for folder in completed:  # the per-run records: a report, no failure
+        assert os.path.exists(os.path.join(folder, "report.json"))
+        assert not os.path.exists(os.path.join(folder, studies.FAILURE_NAME))
 
 
 def test_quick_example_with_packlab(tmp_path):
@@ -348,3 +433,66 @@ def test_placeholder_variables():
     # The key does not depend on where the SPEC's folder is.
     moved, _ = studies.plan(studies.load_spec(table, spec_dir="/other"), "/tmp/x")
     assert set(moved) == set(units)
+
+
+def example_specs():
+    """Every SPEC under examples/: the TOML files with a command or [[stage]] (the others are
+    configs of single commands)."""
+    import tomllib
+
+    found = []
+    for root, _, files in os.walk(os.path.join(REPO, "examples")):
+        for name in files:
+            if name.endswith(".toml"):
+                with open(os.path.join(root, name), "rb") as f:
+                    if {"command", "stage"} & set(tomllib.load(f)):
+                        found.append(os.path.relpath(os.path.join(root, name), REPO))
+    return sorted(found)
+
+
+def test_example_specs_are_found_and_documented():
+    specs = example_specs()
+    assert len(specs) >= 15 and "examples/study/quick.toml" in specs
+    with open(os.path.join(REPO, "docs", "study.md")) as f:
+        docs = f.read()
+    assert [s for s in specs if f"`{s}`" not in docs] == []  # each listed in docs/study.md
+
+
+_HELP = {}
+
+
+def _help(binary, command):
+    if command not in _HELP:
+        result = subprocess.run([binary, *command, "--help"], capture_output=True, text=True)
+        assert result.returncode == 0, f"packlab {' '.join(command)} --help: {result.stderr}"
+        _HELP[command] = result.stdout
+    return _HELP[command]
+
+
+@pytest.mark.parametrize("path", example_specs())
+def test_example_spec_expands(path, tmp_path):
+    """A SPEC under examples/ loads, expands into its stage runs (without running them), names
+    config files that exist and, with the packlab binary, only commands and options it has."""
+    spec = studies.load_spec(os.path.join(REPO, path))
+    units, tasks = studies.plan(spec, tmp_path / "study")
+    assert tasks and units
+    assert all(len(t["units"]) == len(spec["stages"]) for t in tasks)
+    assert len({(json.dumps(t["point"], sort_keys=True), t["seed"]) for t in tasks}) == len(tasks)
+    for unit in units.values():
+        for word in unit["argv"]:
+            if word.startswith(spec["spec_dir"]):  # a file beside the SPEC (a config)
+                assert os.path.exists(word), f"{path}: {word} does not exist"
+    binary = os.environ.get("PACKLAB_BINARY")
+    if not binary or not os.path.exists(binary):
+        return
+    for unit in units.values():
+        command = []  # the subcommand words: up to the first option or file ("generate {method}" -> ls)
+        for word in unit["argv"]:
+            if not word.replace("-", "").isalpha() or word.startswith("-"):
+                break
+            command.append(word)
+        text = _help(binary, tuple(command))
+        for word in unit["argv"]:
+            if word.startswith("--"):
+                assert f"{word} " in text or f"{word}," in text or f"{word}\n" in text or f"{word}=" in text, \
+                    f"{path}: packlab {' '.join(command)} has no option {word}"
