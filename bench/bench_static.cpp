@@ -89,9 +89,10 @@ int compress(int argc, char** argv) {
       r.youngs_modulus, r.strength, r.strain_at_peak, r.broken_bonds, r.solves, r.factorizations, r.stop_reason);
   fmt::print(
       "unknowns {}, matrix nonzeros {} (lower), factor nonzeros {}; assemble + factorize {:.2f} s, solves {:.2f} s "
-      "({} PCG iterations), {} downdates {:.2f} s, set-up and links {:.2f} s\n",
-      r.unknowns, r.matrix_nonzeros, r.factor_nonzeros, r.factor_seconds, r.solve_seconds, r.pcg_iterations,
-      r.downdates, r.downdate_seconds, seconds - r.factor_seconds - r.solve_seconds - r.downdate_seconds);
+      "(of which checks {:.2f} s; {} PCG iterations), {} downdates {:.2f} s, set-up and links {:.2f} s\n",
+      r.unknowns, r.matrix_nonzeros, r.factor_nonzeros, r.factor_seconds, r.solve_seconds, r.check_seconds,
+      r.pcg_iterations, r.downdates, r.downdate_seconds,
+      seconds - r.factor_seconds - r.solve_seconds - r.downdate_seconds);
   const double bytes_per_bond = static_cast<double>(r.solver_bytes) / static_cast<double>(r.bonds);
   fmt::print(
       "packlab static compress N={} bonds={} threads={} backend={} breaks={} wall_s={:.2f} "

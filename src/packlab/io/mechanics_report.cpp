@@ -116,6 +116,7 @@ nlohmann::json uniaxial_compression_summary(const mechanics::UniaxialCompression
         {"pcg_iterations", r.pcg_iterations},
         {"factor_seconds", r.factor_seconds},
         {"downdate_seconds", r.downdate_seconds},
+        {"check_seconds", r.check_seconds},
         {"solve_seconds", r.solve_seconds},
         {"matrix_and_factor_bytes", r.solver_bytes},
         {"strength_method", "sequential linear analysis (envelope of the bond breaks)"}};

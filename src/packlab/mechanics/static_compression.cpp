@@ -234,6 +234,7 @@ UniaxialCompressionResult run_static_uniaxial_compression(const Packing& bonded_
   result.pcg_iterations = st.pcg_iterations;
   result.downdates = st.downdates;
   result.downdate_seconds = st.downdate_seconds;
+  result.check_seconds = st.check_seconds;
   result.factor_seconds = st.factor_seconds + st.assemble_seconds;
   result.solve_seconds = st.solve_seconds;
   result.steps = st.solves;

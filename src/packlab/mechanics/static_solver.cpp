@@ -477,7 +477,11 @@ void StaticSolver::solve(std::span<double> q, const DisplacementGradient& gradie
       factor_->solve(f, x);
     // A downdated factor carries the rounding of its modifications: check the solution on the
     // matrix of the active links and refine.
-    if (downdates_since_factorization_ > 0) solved = refine(f, x) >= 0;
+    if (downdates_since_factorization_ > 0) {
+      const auto t1 = std::chrono::steady_clock::now();
+      solved = refine(f, x) >= 0;
+      stats_.check_seconds += seconds_since(t1);
+    }
   } else {
     // The factor is of the matrix before the links were switched off: precondition with it.
     assembly_.assemble(active_, options_.regularization);

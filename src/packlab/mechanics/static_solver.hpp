@@ -54,6 +54,7 @@ struct StaticSolverStats {
   long downdates = 0;             // links taken out of the factor by a rank update
   long backward_only_solves = 0;  // solves from the forward half kept through the downdates
   double assemble_seconds = 0.0, factor_seconds = 0.0, solve_seconds = 0.0, downdate_seconds = 0.0;
+  double check_seconds = 0.0;  // of solve_seconds: the check (and refinement) of solves after downdates
 };
 
 class StaticSolver {

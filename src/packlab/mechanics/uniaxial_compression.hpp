@@ -144,7 +144,8 @@ struct UniaxialCompressionResult {
   long pcg_iterations = 0;                                             // static
   long downdates = 0;                                                  // static: bonds taken out of the factor
   double factor_seconds = 0.0, solve_seconds = 0.0, downdate_seconds = 0.0;  // static [s]
-  Packing model;  // the model as run (final positions, bond states)
+  double check_seconds = 0.0;  // static: of solve_seconds, the checks of re-solves after downdates [s]
+  Packing model;               // the model as run (final positions, bond states)
   double seconds = 0.0;
 };
 
