@@ -22,7 +22,7 @@ if [ ! -f "$WORK/fba/packing.xyz" ]; then
     --seed 2 --no-plots --quiet --out "$WORK/fba"
 fi
 CSV=docs/data/petsc_scaling.csv
-echo "# scripts/bench-petsc.sh: $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | xargs), $(nproc) cores, $(free -g | awk '/Mem:/{print $2}') GiB; MUMPS Cholesky (PETSc $(pkg-config --modversion PETSc 2>/dev/null || echo '?')), OMP_NUM_THREADS=1" > "$CSV.tmp"
+echo "# scripts/bench-petsc.sh: $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | xargs), $(nproc --all) cores, $(free -g | awk '/Mem:/{print $2}') GiB, load average $(cut -d" " -f1 /proc/loadavg) at the start (a machine shared with other builds); MUMPS Cholesky (PETSc $(pkg-config --modversion PETSc 2>/dev/null || echo '?')), OMP_NUM_THREADS=1" > "$CSV.tmp"
 echo "tiles,particles,bonds,ranks,unknowns,matrix_nnz,factor_nnz,factor_s,solve_s,wall_s,youngs_modulus,rss_mib_per_rank" >> "$CSV.tmp"
 for t in "${TILES[@]}"; do
   model=$WORK/opal_t$t.vtu
@@ -41,50 +41,41 @@ EOF
 done
 mv "$CSV.tmp" "$CSV"
 /usr/bin/python3 - "$CSV" docs/data/petsc_extrapolation.txt <<'EOF'
-# Power laws y = a N^b (least squares in log-log) of the factor's entries, the largest rank's
-# and all ranks' peak resident memory at 2 ranks, and rank 0's excess over rank 1 (what rank 0
-# holds alone: the model, the links, the assembled matrix), against particles; evaluated at the
-# paper's 3.4 M particles (39 M bonds: the bonds per particle of these opals are ~5.6, the
-# paper's ~11.5, so the memory per particle is scaled by the bonds too, see below).
+# From the 2-rank rows: the factor's entries against particles (power law, least squares in
+# log-log, and the 4/3 law of nested dissection on a 3D graph from the largest model); MUMPS's
+# memory per factor entry (rank 1 holds only its part of the factor: the slope of its peak
+# resident memory against half the entries); what rank 0 holds alone (its peak minus rank 1's:
+# the model, the links, the assembled matrix) per bond. Evaluated at the paper's 3.4 M particles
+# and 39 M bonds, and as nodes of 24 GiB and 2 cores (2 ranks each, 85 % of the memory usable).
 import csv, math, sys
 rows = [r for r in csv.DictReader(line for line in open(sys.argv[1]) if not line.startswith("#"))]
 two = [r for r in rows if r["ranks"] == "2"]
-def fit(xs, ys):
-    lx, ly = [math.log(x) for x in xs], [math.log(y) for y in ys]
-    n = len(lx); mx, my = sum(lx) / n, sum(ly) / n
-    b = sum((x - mx) * (y - my) for x, y in zip(lx, ly)) / sum((x - mx) ** 2 for x in lx)
-    return math.exp(my - b * mx), b
 N = [float(r["particles"]) for r in two]
 bonds = [float(r["bonds"]) for r in two]
-rss = [[float(v) for v in r["rss_mib_per_rank"].split(",")] for r in two]
-factor = [float(r["factor_nnz"]) for r in two]
-out = []
-say = out.append
-target_n, target_bonds = 3.4e6, 39e6
-say("# scripts/bench-petsc.sh from docs/data/petsc_scaling.csv (2-rank rows): y = a N^b, N = particles")
-for name, ys in [("factor entries", factor), ("peak RSS rank 0 [MiB]", [r[0] for r in rss]),
-                 ("peak RSS rank 1 [MiB]", [r[1] for r in rss]), ("peak RSS both ranks [MiB]", [sum(r) for r in rss])]:
-    a, b = fit(N, ys)
-    say(f"{name}: a = {a:.4g}, b = {b:.3f}; at N = 3.4e6: {a * target_n ** b:.4g}")
-a_f, b_f = fit(N, factor)
-bonds_per_particle = sum(bonds) / sum(N)
-# The factor's fill follows the graph: per particle it scales with the coupling per particle; the
-# paper's model has target_bonds / target_n bonds per particle against these opals' ratio.
-scale = (target_bonds / target_n) / bonds_per_particle
-factor_target = a_f * target_n ** b_f * scale
-a0, b0 = fit(N, [max(r[0] - r[1], 1.0) for r in rss])
-a1, b1 = fit(N, [r[1] for r in rss])
-rank0_alone = a0 * target_n ** b0 * scale / 1024  # GiB
-# Bytes per factor entry measured: MUMPS's working memory over its entries (rank 1 holds only factor work).
-bytes_per_entry = max(r[1] * 1048576 / (f / 2) for r, f in zip(rss, factor))
-factor_gib = factor_target * bytes_per_entry / 1024**3
-node_gib = 24 * 0.85  # usable of a 24 GiB node (system, MPI buffers)
-nodes = math.ceil((factor_gib + rank0_alone) / node_gib)
-say(f"bonds per particle here {bonds_per_particle:.2f}, paper {target_bonds / target_n:.2f}: x{scale:.2f} on fill and per-particle memory")
-say(f"factor entries at 3.4 M particles / 39 M bonds: {factor_target:.3g}; at {bytes_per_entry:.1f} B per entry "
-    f"(measured, rank 1's peak over its half of the factor): {factor_gib:.0f} GiB in all")
-say(f"rank 0 alone (model, links, assembled matrix; rank 0 - rank 1 peak, fitted b = {b0:.2f}): {rank0_alone:.1f} GiB")
-say(f"nodes of 24 GiB / 2 cores (85 % usable, 2 ranks each): {nodes} (factor spread evenly; rank 0's node also holds the model)")
+entries = [float(r["factor_nnz"]) for r in two]
+rss = [[float(v) * 1048576 for v in r["rss_mib_per_rank"].split(",")] for r in two]
+def line(xs, ys):
+    n = len(xs); mx, my = sum(xs) / n, sum(ys) / n
+    b = sum((x - mx) * (y - my) for x, y in zip(xs, ys)) / sum((x - mx) ** 2 for x in xs)
+    return my - b * mx, b
+la, b_fit = line([math.log(x) for x in N], [math.log(y) for y in entries])
+_, bytes_per_entry = line([e / 2 for e in entries], [r[1] for r in rss])
+_, rank0_per_bond = line(bonds, [r[0] - r[1] for r in rss])
+Nt, Bt, GiB = 3.4e6, 39e6, 1024.0**3
+usable = 24 * 0.85
+out = ["# scripts/bench-petsc.sh from docs/data/petsc_scaling.csv (2-rank rows)",
+       f"factor entries ~ N^{b_fit:.3f} (fit over N = {N[0]:.0f}..{N[-1]:.0f}); MUMPS memory {bytes_per_entry:.1f} B per "
+       f"factor entry (slope of rank 1's peak); rank 0 alone {rank0_per_bond:.0f} B per bond (slope of rank 0 - rank 1 peak)",
+       f"bonds per particle: these opals {sum(bonds) / sum(N):.2f}, the paper's model {Bt / Nt:.2f}"]
+rank0 = rank0_per_bond * Bt / GiB
+for label, e in [("fitted exponent", math.exp(la) * Nt**b_fit),
+                 ("4/3 law from the largest model", entries[-1] * (Nt / N[-1]) ** (4 / 3)),
+                 ("4/3 law, fill x bonds-per-particle ratio",
+                  entries[-1] * (Nt / N[-1]) ** (4 / 3) * (Bt / Nt) / (bonds[-1] / N[-1]))]:
+    factor = e * bytes_per_entry / GiB
+    nodes = math.ceil((factor + rank0) / usable)
+    out.append(f"at 3.4 M particles / 39 M bonds, {label}: {e:.3g} factor entries, factor {factor:.0f} GiB + rank 0 "
+               f"alone {rank0:.1f} GiB = {factor + rank0:.0f} GiB: {nodes} nodes of 24 GiB ({2 * nodes} ranks)")
 open(sys.argv[2], "w").write("\n".join(out) + "\n")
 print("\n".join(out))
 EOF
