@@ -15,7 +15,17 @@
 //     G' in the six orientations of the N_S = 8000 VEM structure
 //     (examples/shear/data/vem_ns8000_nv2000.xyz, contact bonds at 1.01 x 2r, Table 1), already
 //     relaxed: one solve per orientation.
-// BACKEND: auto, cholmod or eigen. Prints the unknowns, nonzeros of the matrix and of the
+//   bench_static model TILES PACKING OUT
+//     writes the opal model built from the particle packing PACKING ("-": the default FBA packing
+//     of opal_case.hpp, one tile of it about 3,400 opal particles) tiled TILES x TILES to OUT.
+//   mpirun -np K bench_static petsc MODEL [THREADS] [OPTIONS]
+//     (in a build with PETSc) Young's modulus of the bonded MODEL by the PETSc backend on K ranks
+//     (ranks > 0 serve rank 0, as in the packlab program), PETSc OPTIONS as --petsc-options;
+//     prints the unknowns, the nonzeros of the matrix and of MUMPS's factor, the seconds to
+//     assemble + factorize and to solve, MUMPS's factorization memory (all ranks) and every
+//     rank's peak resident memory; last line: packlab static petsc ... .
+//     scripts/bench-petsc.sh runs it over growing opals (docs/data/petsc_scaling.csv).
+// BACKEND: auto, cholmod, eigen or petsc. Prints the unknowns, nonzeros of the matrix and of the
 // factor, bytes per bond, seconds per phase; last line: packlab static ... .
 #include <fmt/format.h>
 
@@ -36,6 +46,9 @@
 #include "packlab/mechanics/opal_materials.hpp"
 #include "packlab/mechanics/static_loading.hpp"
 #include "packlab/mechanics/uniaxial_compression.hpp"
+#ifdef PACKLAB_HAVE_PETSC
+#include "packlab/mechanics/static_solver_petsc.hpp"
+#endif
 #include "shear_case.hpp"
 
 using namespace packlab;
@@ -219,11 +232,67 @@ int compare(int argc, char** argv) {
   return 0;
 }
 
+int model(int argc, char** argv) {
+  if (argc < 5) fail_input("bench_static model TILES PACKING OUT");
+  const int tiles = std::atoi(argv[2]);
+  const std::string packing = argv[3];
+  const Packing input = packing == "-" ? default_packing(1) : io::read_packing(packing);
+  const Packing m = make_opal(tile(input, tiles), 1);
+  io::write_packing(m, argv[4]);
+  return 0;
+}
+
+#ifdef PACKLAB_HAVE_PETSC
+int petsc(int argc, char** argv) {
+  if (argc < 3) fail_input("bench_static petsc MODEL [THREADS] [OPTIONS]");
+  const int threads = argc > 3 ? std::atoi(argv[3]) : 1;
+  const Packing m = io::read_packing(argv[2]);
+  mechanics::UniaxialCompressionSetup setup;
+  setup.options.threads = threads;
+  setup.finish(m);
+  mechanics::UniaxialCompressionOptions o = setup.options;
+  o.solver = "static";
+  o.solver_backend = "petsc";
+  o.petsc_options = argc > 4 ? argv[4] : "";
+  o.max_breaks = 1;
+  o.max_strain = 1e-6;  // modulus only: no bond reaches its strength
+  const auto t0 = std::chrono::steady_clock::now();
+  const mechanics::UniaxialCompressionResult r = mechanics::run_uniaxial_compression(m, o);
+  const double seconds = since(t0);
+  const std::vector<double> memory = mechanics::petsc::peak_memory_per_rank();
+  std::string per_rank;
+  for (const double bytes : memory) per_rank += fmt::format("{}{:.1f}", per_rank.empty() ? "" : ",", bytes / 1048576.0);
+  fmt::print(
+      "E = {:.6g} Pa; unknowns {}, matrix nonzeros {} (lower), factor nonzeros {}; assemble + factorize {:.2f} s, "
+      "solves {:.2f} s; matrix (rank 0) + MUMPS's factorization memory (all ranks) {:.0f} MB; peak resident MiB "
+      "per rank {}\n",
+      r.youngs_modulus, r.unknowns, r.matrix_nonzeros, r.factor_nonzeros, r.factor_seconds, r.solve_seconds,
+      static_cast<double>(r.solver_bytes) / 1e6, per_rank);
+  fmt::print(
+      "packlab static petsc N={} bonds={} ranks={} threads={} unknowns={} matrix_nnz={} factor_nnz={} "
+      "factor_s={:.2f} solve_s={:.2f} wall_s={:.2f} E={:.8g} rss_mib={}\n",
+      r.particles, r.bonds, mechanics::petsc::ranks(), threads, r.unknowns, r.matrix_nonzeros, r.factor_nonzeros,
+      r.factor_seconds, r.solve_seconds, seconds, r.youngs_modulus, per_rank);
+  return 0;
+}
+#endif
+
 }  // namespace
 
 int main(int argc, char** argv) {
   ensure_passive_thread_wait(argv);  // as the packlab program does (core/thread_wait.hpp)
+#ifdef PACKLAB_HAVE_PETSC
+  int worker_exit = 0;
+  if (mechanics::petsc::serve_if_worker(worker_exit)) return worker_exit;
+  struct ReleaseWorkers {
+    ~ReleaseWorkers() { mechanics::petsc::finish(); }
+  } release_workers;
+#endif
   const std::string what = argc > 1 ? argv[1] : "compress";
+  if (what == "model") return model(argc, argv);
+#ifdef PACKLAB_HAVE_PETSC
+  if (what == "petsc") return petsc(argc, argv);
+#endif
   if (what == "shear") return shear(argc, argv);
   if (what == "compare") return compare(argc, argv);
   return compress(argc, argv);

@@ -10,6 +10,11 @@ packages=(
   python3 python3-dev pybind11-dev python3-numpy python3-matplotlib python3-pytest
   python3-distributed  # `packlab study --scheduler`: the Dask cluster (docs/study.md); the local pool needs nothing
 )
+# The static solver's distributed backend (docs/static-solver.md, "Distributed solve with PETSc"):
+# PETSc with MUMPS over Open MPI, only when asked (PACKLAB_PETSC=1) and in CI, which tests it.
+if [ "${PACKLAB_PETSC:-0}" = "1" ] || [ "${CI:-false}" = "true" ]; then
+  packages+=(libpetsc-real-dev openmpi-bin)
+fi
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

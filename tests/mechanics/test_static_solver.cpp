@@ -410,8 +410,12 @@ TEST(StaticSolver, BadInputIsAnInputError) {
   o = compression_options("quasi");
   EXPECT_THROW(run_uniaxial_compression(column, o), InputError);
   o = compression_options("static");
-  o.solver_backend = "petsc";
+  o.solver_backend = "superlu";  // no such backend
   EXPECT_THROW(run_uniaxial_compression(column, o), InputError);
+#ifndef PACKLAB_HAVE_PETSC
+  o.solver_backend = "petsc";  // only in a build with PETSc
+  EXPECT_THROW(run_uniaxial_compression(column, o), InputError);
+#endif
   const Packing sc = test::bonded_lattice(generate::LatticeType::sc, {3, 3, 3}, r0, 1.01);
   EXPECT_THROW(run_oscillatory_shear(sc, shear_options("implicit")), InputError);
   // A contact law without a linearization, with touching unbonded pairs.

@@ -12,9 +12,21 @@
 #include "packlab/core/error.hpp"
 #include "packlab/core/thread_wait.hpp"
 #include "packlab/io/report.hpp"
+#ifdef PACKLAB_HAVE_PETSC
+#include "packlab/mechanics/static_solver_petsc.hpp"
+#endif
 
 int main(int argc, char** argv) {
   packlab::ensure_passive_thread_wait(argv);
+#ifdef PACKLAB_HAVE_PETSC
+  // Under mpirun/srun: ranks > 0 serve the static solver's PETSc backend for rank 0, which runs
+  // the command (mechanics/static_solver_petsc.hpp); rank 0 releases them on its way out.
+  int worker_exit = 0;
+  if (packlab::mechanics::petsc::serve_if_worker(worker_exit)) return worker_exit;
+  struct ReleaseWorkers {
+    ~ReleaseWorkers() { packlab::mechanics::petsc::finish(); }
+  } release_workers;
+#endif
   CLI::App app{"packlab: random sphere packings, their microstructure and DEM load tests", "packlab"};
   app.set_version_flag("--version", fmt::format("packlab {}", packlab::io::version()));
   app.require_subcommand(1);

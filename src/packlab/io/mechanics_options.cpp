@@ -52,7 +52,11 @@ void add_oscillatory_shear_options(ConfigSchema& schema, mechanics::OscillatoryS
       .text("solver", t.solver,
             "dynamic: oscillating plate in explicit DEM; static: one quasi-static linear solve per orientation "
             "(phase angle 0 by construction; docs/static-solver.md)")
-      .text("solver_backend", t.solver_backend, "Static solver's sparse Cholesky: auto, cholmod or eigen")
+      .text("solver_backend", t.solver_backend,
+            "Static solver's sparse Cholesky: auto, cholmod, eigen or petsc (MPI; in a build with PETSc)")
+      .text("petsc_options", t.petsc_options,
+            "Static solver, petsc backend: PETSc options, e.g. \"-ksp_type cg -pc_type gamg\" (default: Cholesky by "
+            "MUMPS)")
       .boolean("relax.enabled", t.relax,
                "Relax the periodic bonded structure first (§2.2: velocities zeroed after "
                "each step)")
@@ -126,7 +130,11 @@ void add_uniaxial_compression_options(ConfigSchema& schema, mechanics::UniaxialC
       .text("solver", o.solver,
             "dynamic: explicit DEM at strain_rate; static: quasi-static linear solves, strength by sequential "
             "linear analysis (docs/static-solver.md)")
-      .text("solver_backend", o.solver_backend, "Static solver's sparse Cholesky: auto, cholmod or eigen")
+      .text("solver_backend", o.solver_backend,
+            "Static solver's sparse Cholesky: auto, cholmod, eigen or petsc (MPI; in a build with PETSc)")
+      .text("petsc_options", o.petsc_options,
+            "Static solver, petsc backend: PETSc options, e.g. \"-ksp_type cg -pc_type gamg\" (default: Cholesky by "
+            "MUMPS)")
       .integer("max_breaks", o.max_breaks, "Static solver: stop after this many bond breaks (0 = no limit)")
       .range({0.0, 1e12, false, false});
 }

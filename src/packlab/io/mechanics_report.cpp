@@ -5,6 +5,9 @@
 #include <numbers>
 
 #include "packlab/analyze/stress_strain.hpp"
+#ifdef PACKLAB_HAVE_PETSC
+#include "packlab/mechanics/static_solver_petsc.hpp"
+#endif
 
 namespace packlab::io {
 
@@ -120,6 +123,9 @@ nlohmann::json uniaxial_compression_summary(const mechanics::UniaxialCompression
         {"solve_seconds", r.solve_seconds},
         {"matrix_and_factor_bytes", r.solver_bytes},
         {"strength_method", "sequential linear analysis (envelope of the bond breaks)"}};
+#ifdef PACKLAB_HAVE_PETSC
+    if (o.solver_backend == "petsc") j["static_solver"]["mpi_ranks"] = mechanics::petsc::ranks();
+#endif
   }
   j["seconds"] = r.seconds;
   j["particle_steps_per_second"] =

@@ -89,7 +89,8 @@ struct OscillatoryShearOptions {
   // "dynamic": the oscillating plate above; "static": one linear solve per orientation with the
   // same set-up, the upper plate displaced by amplitude x H (mechanics/static_loading.hpp).
   std::string solver = "dynamic";
-  std::string solver_backend = "auto";  // static: "auto", "cholmod" or "eigen"
+  std::string solver_backend = "auto";  // static: "auto", "cholmod", "eigen" or "petsc"
+  std::string petsc_options;            // static, petsc backend: PETSc options (docs/static-solver.md)
   // Called now and then: stage ("relax", "z:x", ...), steps done and total of that stage.
   std::function<void(const std::string& stage, long done, long total)> progress;
   // Resumable tests (`packlab test shear --resume`, cli/checkpoint.hpp): `checkpoint` is called

@@ -52,6 +52,7 @@ UniaxialCompressionResult run_static_uniaxial_compression(const Packing& bonded_
   const StaticLinks links = linearize_links(model, config);
   StaticSolverOptions solver_options;
   solver_options.backend = options.solver_backend;
+  solver_options.petsc_options = options.petsc_options;
   solver_options.threads = options.threads;
   StaticSolver solver(links, model.fixed, solver_options);
 

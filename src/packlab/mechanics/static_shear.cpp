@@ -32,6 +32,7 @@ ShearRun run_static_shear_orientation(const Packing& bonded, const ShearOrientat
   for (std::size_t k = 0; k < prescribed.size(); ++k) prescribed[k] = setup.role[k] != 0 ? 1 : 0;
   StaticSolverOptions solver_options;
   solver_options.backend = options.solver_backend;
+  solver_options.petsc_options = options.petsc_options;
   solver_options.threads = options.threads;
   StaticSolver solver(links, prescribed, solver_options);
 

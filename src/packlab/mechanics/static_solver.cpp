@@ -21,6 +21,9 @@
 #ifdef PACKLAB_HAVE_CHOLMOD
 #include <cholmod.h>
 #endif
+#ifdef PACKLAB_HAVE_PETSC
+#include "packlab/mechanics/static_solver_petsc.hpp"
+#endif
 
 namespace packlab::mechanics {
 
@@ -54,11 +57,15 @@ void symmetric_multiply(const StiffnessAssembly& a, const std::vector<double>& x
 }  // namespace
 
 std::vector<std::string> static_solver_backends() {
+  std::vector<std::string> backends;
 #ifdef PACKLAB_HAVE_CHOLMOD
-  return {"cholmod", "eigen"};
-#else
-  return {"eigen"};
+  backends.push_back("cholmod");
 #endif
+  backends.push_back("eigen");
+#ifdef PACKLAB_HAVE_PETSC
+  backends.push_back("petsc");
+#endif
+  return backends;
 }
 
 struct StaticSolver::Factor {
@@ -75,6 +82,8 @@ struct StaticSolver::Factor {
   // Whether downdate() is available; downdate(s) changes the factor of A to that of A - s (s
   // positive semi-definite); false when it failed (the factor is then unusable).
   virtual bool can_update() const { return false; }
+  // False where solve() is iterative (PETSc with a Krylov method): solve() then checks and refines.
+  virtual bool exact() const { return true; }
   virtual bool downdate(const LinkStiffness&) { return false; }
   // The same, keeping the forward half y = L^-1 P b of the solution of the last solve() valid
   // for the new factor and the load b + load_change: `previous_load` is that solve's b; the
@@ -321,6 +330,21 @@ struct CholmodCholesky final : StaticSolver::Factor {
 };
 #endif
 
+#ifdef PACKLAB_HAVE_PETSC
+// PETSc over MPI (static_solver_petsc.hpp): by default MUMPS's parallel Cholesky factorization,
+// the factor spread over the ranks. It has no low-rank update: after links are switched off the
+// solves run conjugate gradients preconditioned by it (refine()), as with Eigen's factor.
+struct PetscFactor final : StaticSolver::Factor {
+  petsc::DistributedFactor factor;
+  PetscFactor(const StiffnessAssembly& a, const StaticSolverOptions& o) : factor(a, o.petsc_options, o.threads) {
+    nonzeros = factor.info().factor_nonzeros;
+    bytes = static_cast<std::size_t>(factor.info().factor_megabytes_total * 1e6);
+  }
+  void solve(const std::vector<double>& b, std::vector<double>& x) override { factor.solve(b, x); }
+  bool exact() const override { return factor.info().direct; }
+};
+#endif
+
 StaticSolver::StaticSolver(const StaticLinks& links, std::span<const std::uint8_t> prescribed,
                            const StaticSolverOptions& options)
     : links_(links), options_(options), active_(links.size(), 1), assembly_(links, prescribed) {
@@ -350,6 +374,9 @@ void StaticSolver::factorize() {
   omp_set_num_threads(std::max(1, options_.threads));  // the BLAS of the supernodal kernels
 #ifdef PACKLAB_HAVE_CHOLMOD
   if (options_.backend == "cholmod") factor_ = std::make_unique<CholmodCholesky>(assembly_);
+#endif
+#ifdef PACKLAB_HAVE_PETSC
+  if (options_.backend == "petsc") factor_ = std::make_unique<PetscFactor>(assembly_, options_);
 #endif
   if (!factor_) factor_ = std::make_unique<EigenCholesky>(assembly_);
   omp_set_num_threads(saved_threads);
@@ -477,7 +504,8 @@ void StaticSolver::solve(std::span<double> q, const DisplacementGradient& gradie
       factor_->solve(f, x);
     // A downdated factor carries the rounding of its modifications: check the solution on the
     // matrix of the active links and refine.
-    if (downdates_since_factorization_ > 0) {
+    // So does an iterative solve (PETSc with a Krylov method).
+    if (downdates_since_factorization_ > 0 || !factor_->exact()) {
       const auto t1 = std::chrono::steady_clock::now();
       solved = refine(f, x) >= 0;
       stats_.check_seconds += seconds_since(t1);

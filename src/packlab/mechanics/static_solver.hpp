@@ -2,7 +2,8 @@
 // free particles' displacements and rotations (static_stiffness.hpp), by a sparse Cholesky
 // factorization: CHOLMOD's supernodal LL^T (SuiteSparse, with a fill-reducing ordering and
 // BLAS-3 kernels) when packlab was built with it, Eigen's simplicial LL^T (AMD ordering)
-// otherwise or on request. docs/static-solver.md compares the two.
+// otherwise or on request; in a build with PETSc, on request, PETSc over MPI (MUMPS's parallel
+// Cholesky by default; static_solver_petsc.hpp). docs/static-solver.md compares them.
 //
 // Links switched off after the factorization (sequential linear analysis removing broken
 // bonds) change the matrix by a low-rank term (rank <= 6 per link). With CHOLMOD the factor is
@@ -10,8 +11,9 @@
 // matrix of the active links and refined by conjugate gradients preconditioned with the factor
 // (usually zero or one iteration). Eigen's factor cannot be modified: the next solves run
 // preconditioned conjugate gradients on the new matrix with the old factor as the
-// preconditioner (in exact arithmetic r + 1 iterations for a change of rank r). Either way the
-// matrix is factorized anew when the refinement takes more than `refactor_iterations`.
+// preconditioner (in exact arithmetic r + 1 iterations for a change of rank r); so do PETSc's.
+// Either way the matrix is factorized anew when the refinement takes more than
+// `refactor_iterations`.
 //
 // Particles with no links at all, and mechanisms of the network (a particle held by one contact
 // bond can spin about it), make K singular: a diagonal shift of `regularization` x each diagonal
@@ -31,15 +33,16 @@
 namespace packlab::mechanics {
 
 struct StaticSolverOptions {
-  std::string backend = "auto";   // "auto" (CHOLMOD when built with it), "cholmod", "eigen"
+  std::string backend = "auto";   // "auto" (CHOLMOD when built with it), "cholmod", "eigen", "petsc"
   double regularization = 1e-12;  // relative diagonal shift [-]
   double tolerance = 1e-10;       // PCG: relative residual |r| / |f|
   int refactor_iterations = 40;   // PCG iterations above which the matrix is factorized anew
   bool modify_factor = true;      // CHOLMOD: take switched-off links out of the factor (downdate)
-  int threads = 1;                // BLAS threads of the CHOLMOD factorization
+  int threads = 1;                // BLAS threads of the CHOLMOD factorization (of each rank with PETSc)
+  std::string petsc_options;      // PETSc: options database entries, e.g. "-ksp_type cg -pc_type gamg"
 };
 
-// The backends this build has ("cholmod", "eigen").
+// The backends this build has ("cholmod", "eigen", "petsc"; "petsc": static_solver_petsc.hpp).
 std::vector<std::string> static_solver_backends();
 
 struct StaticSolverStats {

@@ -101,7 +101,8 @@ struct UniaxialCompressionOptions {
   // "dynamic": the explicit DEM run above; "static": the quasi-static solver with sequential
   // linear analysis (mechanics/static_loading.hpp, docs/static-solver.md).
   std::string solver = "dynamic";
-  std::string solver_backend = "auto";  // static: "auto", "cholmod" or "eigen"
+  std::string solver_backend = "auto";  // static: "auto", "cholmod", "eigen" or "petsc"
+  std::string petsc_options;            // static, petsc backend: PETSc options (docs/static-solver.md)
   long max_breaks = 0;                  // static: stop after this many bond breaks (0 = no limit)
   // Called at each curve point (progress); may be empty.
   std::function<void(const UniaxialCompressionPoint&)> on_point;
