@@ -70,3 +70,9 @@ if [ "$quick" = 1 ]; then run bench_compress 1 - 1 500; else run bench_compress 
 # solve, and G' in six orientations of the N = 8000 shear structure.
 run bench_static compress 1 - cholmod -1
 run bench_static shear 1 "$ROOT/examples/shear/data/vem_ns8000_nv2000.xyz"
+# Its PETSc backend (a build with PETSc): MUMPS over 1 and 2 MPI ranks, memory per rank and the
+# extrapolation to the paper's 3.4 M particles (scripts/bench-petsc.sh; the docs' data stay).
+if grep -qs PACKLAB_HAVE_PETSC "$BUILD/CMakeFiles/packlab_lib.dir/flags.make"; then
+  echo; echo "== static solver, PETSc backend (scripts/bench-petsc.sh) =="
+  PETSC_BENCH_DATA="$BUILD/bench-petsc" bash "$ROOT/scripts/bench-petsc.sh" "$BUILD" $([ "$quick" = 1 ] && echo "1 2")
+fi

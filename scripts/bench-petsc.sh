@@ -5,6 +5,7 @@
 # extrapolation to the paper's 3.4 M particles / 39 M bonds, into docs/data/petsc_extrapolation.txt
 # (docs/static-solver.md, "Distributed solve with PETSc").
 #   scripts/bench-petsc.sh [BUILD] [TILES...]     (default: build, tiles 1 2 3 4)
+# PETSC_BENCH_DATA=DIR writes the two files there instead of docs/data (make bench does).
 # Needs a build with PETSc (bench_static petsc) and mpiexec. One tile of the opal_case.hpp box is
 # about 3,400 opal particles; 4 x 4 tiles is the 54k opal of docs/opal.md.
 set -euo pipefail
@@ -14,14 +15,15 @@ shift || true
 TILES=("$@")
 [ ${#TILES[@]} -eq 0 ] && TILES=(1 2 3 4)
 WORK=$BUILD/bench-petsc
-mkdir -p "$WORK" docs/data
+DATA=${PETSC_BENCH_DATA:-docs/data}
+mkdir -p "$WORK" "$DATA"
 export OMP_NUM_THREADS=1 OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMPI_MCA_rmaps_base_oversubscribe=1
 # The benchmark's force-biased packing (15 nm particles, porosity 0.38, periodic x, y).
 if [ ! -f "$WORK/fba/packing.xyz" ]; then
   "$BUILD/packlab" generate fba --box 300e-9,259.81e-9,412.95e-9 --diameter 15e-9 --porosity 0.38 --periodic xy \
     --seed 2 --no-plots --quiet --out "$WORK/fba"
 fi
-CSV=docs/data/petsc_scaling.csv
+CSV=$DATA/petsc_scaling.csv
 echo "# scripts/bench-petsc.sh: $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | xargs), $(nproc --all) cores, $(free -g | awk '/Mem:/{print $2}') GiB, load average $(cut -d" " -f1 /proc/loadavg) at the start (a machine shared with other builds); MUMPS Cholesky (PETSc $(pkg-config --modversion PETSc 2>/dev/null || echo '?')), OMP_NUM_THREADS=1" > "$CSV.tmp"
 echo "tiles,particles,bonds,ranks,unknowns,matrix_nnz,factor_nnz,factor_s,solve_s,wall_s,youngs_modulus,rss_mib_per_rank" >> "$CSV.tmp"
 for t in "${TILES[@]}"; do
@@ -40,7 +42,7 @@ EOF
   done
 done
 mv "$CSV.tmp" "$CSV"
-/usr/bin/python3 - "$CSV" docs/data/petsc_extrapolation.txt <<'EOF'
+/usr/bin/python3 - "$CSV" "$DATA/petsc_extrapolation.txt" <<'EOF'
 # From the 2-rank rows: the factor's entries against particles (power law, least squares in
 # log-log, and the 4/3 law of nested dissection on a 3D graph from the largest model); MUMPS's
 # memory per factor entry (rank 1 holds only its part of the factor: the slope of its peak
