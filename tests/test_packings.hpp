@@ -2,9 +2,14 @@
 #pragma once
 
 #include <array>
+#include <cmath>
+#include <numbers>
+#include <vector>
 
 #include "packlab/core/packing.hpp"
+#include "packlab/core/random.hpp"
 #include "packlab/generate/bonding.hpp"
+#include "packlab/generate/fba.hpp"
 #include "packlab/generate/lattice.hpp"
 
 namespace packlab::test {
@@ -35,6 +40,25 @@ inline Packing bonded_lattice(generate::LatticeType type, std::array<int, 3> cel
   Packing p = lattice(type, cells, radius);
   generate::BondingOptions bo;
   bo.cutoff_ratio = cutoff_ratio;
+  generate::add_bonds(p, bo);
+  return p;
+}
+
+// A pore-free force-biased packing of n spheres of `radius` (porosity 0.38, periodic x, y, box
+// 1.5 times as high as wide), elastic bonds to 1.75 d: the opal paper's bulk sample, small.
+inline Packing random_bonded_sample(long n, unsigned seed, double radius) {
+  const double d = 2 * radius;
+  Box box;
+  box.periodic = {true, true, false};
+  const double a = std::cbrt(static_cast<double>(n) * std::numbers::pi / 6 * d * d * d / 0.62 / 1.5);
+  box.length = {a, a, 1.5 * a};
+  generate::FbaParams fp;
+  fp.target_porosity = 0.38;
+  Random rng(seed);
+  const std::vector<double> radii = generate::fba_class_radii(n, generate::SizeClasses{}, rng);
+  Packing p = generate::fba_pack(box, radii, fp, rng).packing;
+  generate::BondingOptions bo;
+  bo.cutoff_ratio = 1.75;
   generate::add_bonds(p, bo);
   return p;
 }

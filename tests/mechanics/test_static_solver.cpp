@@ -74,24 +74,7 @@ Packing diluted_fcc(double keep) {
   return p;
 }
 
-// A pore-free force-biased packing (porosity 0.38), periodic x, y, elastic bonds to 1.75 d: the
-// opal paper's bulk sample at 300 particles.
-Packing random_bonded_sample(long n, unsigned seed) {
-  const double d = 2 * r;
-  Box box;
-  box.periodic = {true, true, false};
-  const double a = std::cbrt(static_cast<double>(n) * std::numbers::pi / 6 * d * d * d / 0.62 / 1.5);
-  box.length = {a, a, 1.5 * a};
-  generate::FbaParams fp;
-  fp.target_porosity = 0.38;
-  Random rng(seed);
-  const std::vector<double> radii = generate::fba_class_radii(n, generate::SizeClasses{}, rng);
-  Packing p = generate::fba_pack(box, radii, fp, rng).packing;
-  generate::BondingOptions bo;
-  bo.cutoff_ratio = 1.75;
-  generate::add_bonds(p, bo);
-  return p;
-}
+Packing random_bonded_sample(long n, unsigned seed) { return test::random_bonded_sample(n, seed, r); }
 
 dem::EngineConfig contact_bond_config(double kn, double ks) {
   dem::EngineConfig c;
