@@ -79,19 +79,17 @@ struct StaticSolver::Factor {
     solve(r, z);
     return std::inner_product(r.begin(), r.end(), z.begin(), 0.0);
   }
-  // Whether downdate() is available; downdate(s) changes the factor of A to that of A - s (s
-  // positive semi-definite); false when it failed (the factor is then unusable).
+  // Whether downdate() is available: downdate(s, ...) changes the factor of A to that of A - s
+  // (s positive semi-definite) and keeps the forward half y = L^-1 P b of a solution valid for
+  // the new factor and the load b + load_change: `previous_load` is b (the last solve's load);
+  // the entries of `load_change` (original order) on the link's unknowns are folded in and set
+  // to zero. False when it failed (the factor is then unusable).
   virtual bool can_update() const { return false; }
   // False where solve() is iterative (PETSc with a Krylov method): solve() then checks and refines.
   virtual bool exact() const { return true; }
-  virtual bool downdate(const LinkStiffness&) { return false; }
-  // The same, keeping the forward half y = L^-1 P b of the solution of the last solve() valid
-  // for the new factor and the load b + load_change: `previous_load` is that solve's b; the
-  // entries of `load_change` (original order) on the link's unknowns are folded in and set to
-  // zero. A factor without it does a plain downdate().
-  virtual bool downdate(const LinkStiffness& s, const std::vector<double>& /*previous_load*/,
+  virtual bool downdate(const LinkStiffness&, const std::vector<double>& /*previous_load*/,
                         std::vector<double>& /*load_change*/) {
-    return downdate(s);
+    return false;
   }
   // x = A^-1 b from the kept forward half (the backward sweep only); false when none is kept.
   virtual bool backward_solve(std::vector<double>& /*x*/) { return false; }
@@ -162,10 +160,7 @@ struct CholmodCholesky final : StaticSolver::Factor {
   // for a link, 12 x 12), A - S = A - C C^T with C = V sqrt(lambda), a rank-r downdate of the
   // factor (Davis & Hager's multiple-rank modification, cholmod_updown) that touches only the
   // columns on the elimination-tree paths of the link's unknowns instead of refactorizing.
-  bool downdate(const LinkStiffness& s) override {
-    forward_valid = false;  // cholmod_updown alone leaves it behind
-    return modify(s, nullptr);
-  }
+  //
   // Sequential linear analysis re-solves after every break: with the forward half y = L^-1 P b
   // carried through the downdate (cholmod_updown_solve touches only the columns on the link's
   // elimination-tree paths), a re-solve is the backward sweep alone, one triangular sweep of
@@ -173,7 +168,7 @@ struct CholmodCholesky final : StaticSolver::Factor {
   bool downdate(const LinkStiffness& s, const std::vector<double>& previous_load,
                 std::vector<double>& load_change) override {
     if (!forward_valid && !start_forward(previous_load)) return false;
-    return modify(s, &load_change);
+    return modify(s, load_change);
   }
   bool backward_solve(std::vector<double>& x) override {
     if (!forward_valid) return false;
@@ -202,8 +197,8 @@ struct CholmodCholesky final : StaticSolver::Factor {
     forward_valid = load_delta != nullptr;
     return forward_valid;
   }
-  // The downdate A - S, with the forward half carried along when load_change is given.
-  bool modify(const LinkStiffness& s, std::vector<double>* load_change) {
+  // The downdate A - S, with the forward half carried along.
+  bool modify(const LinkStiffness& s, std::vector<double>& load_change) {
     if (s.size == 0) return true;
     using Small = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::ColMajor, 12, 12>;
     // Translations (N/m) and rotations (N m/rad) differ by ~r^2 (1e-14 for a 100 nm particle):
@@ -254,21 +249,16 @@ struct CholmodCholesky final : StaticSolver::Factor {
       }
     }
     cp[column] = at;
-    int ok = 0;
-    if (load_change) {
-      // The load's change on the link's unknowns (the link's own pull on a prescribed
-      // neighbour), in the factor's row order; zero elsewhere, and zero again on return.
-      auto* delta = static_cast<double*>(load_delta->x);
-      for (int e = 0; e < s.size; ++e) {
-        const auto u = static_cast<std::size_t>(s.unknown[static_cast<std::size_t>(e)]);
-        delta[permuted_row[u]] = (*load_change)[u];
-        (*load_change)[u] = 0.0;
-      }
-      ok = cholmod_updown_solve(0, C, factor, forward, load_delta, &common);
-      if (!ok) forward_valid = false;
-    } else {
-      ok = cholmod_updown(0, C, factor, &common);
+    // The load's change on the link's unknowns (the link's own pull on a prescribed neighbour),
+    // in the factor's row order; zero elsewhere, and zero again on return.
+    auto* delta = static_cast<double*>(load_delta->x);
+    for (int e = 0; e < s.size; ++e) {
+      const auto u = static_cast<std::size_t>(s.unknown[static_cast<std::size_t>(e)]);
+      delta[permuted_row[u]] = load_change[u];
+      load_change[u] = 0.0;
     }
+    const int ok = cholmod_updown_solve(0, C, factor, forward, load_delta, &common);
+    if (!ok) forward_valid = false;
     cholmod_free_sparse(&C, &common);
     return ok && common.status == CHOLMOD_OK;
   }
@@ -409,14 +399,13 @@ void StaticSolver::downdate_pending(const std::vector<double>& f) {
   const auto t0 = std::chrono::steady_clock::now();
   // The load's change since the last solve: each link's share goes into the factor's kept
   // forward solution with that link's downdate; whatever is left elsewhere (another q or
-  // gradient) means a full solve.
-  const bool carry = last_load_.size() == f.size();
-  std::vector<double> change(f.size(), 0.0);
-  if (carry)
-    for (std::size_t r = 0; r < f.size(); ++r) change[r] = f[r] - last_load_[r];
+  // gradient) means a full solve. Without a last load (its solve failed) the forward half
+  // starts from f itself.
+  const std::vector<double>& previous = last_load_.size() == f.size() ? last_load_ : f;
+  std::vector<double> change(f.size());
+  for (std::size_t r = 0; r < f.size(); ++r) change[r] = f[r] - previous[r];
   for (std::size_t k : pending_downdates_) {
-    const LinkStiffness s = assembly_.free_link_stiffness(k);
-    const bool ok = carry ? factor_->downdate(s, last_load_, change) : factor_->downdate(s);
+    const bool ok = factor_->downdate(assembly_.free_link_stiffness(k), previous, change);
     ++downdates_since_factorization_;
     ++stats_.downdates;
     if (!ok) {
@@ -425,7 +414,7 @@ void StaticSolver::downdate_pending(const std::vector<double>& f) {
     }
   }
   pending_downdates_.clear();
-  if (!carry || std::any_of(change.begin(), change.end(), [](double v) { return v != 0.0; })) factor_->drop_forward();
+  if (std::any_of(change.begin(), change.end(), [](double v) { return v != 0.0; })) factor_->drop_forward();
   stats_.downdate_seconds += seconds_since(t0);
 }
 
