@@ -36,6 +36,7 @@
 #include <numbers>
 #include <string>
 
+#include "../tests/test_packings.hpp"
 #include "opal_case.hpp"
 #include "packlab/core/error.hpp"
 #include "packlab/core/random.hpp"
@@ -193,20 +194,7 @@ int compare(int argc, char** argv) {
   }
   // E and strength of force-biased samples, elastic bonds (silica), the automatic quasi-static rate.
   for (const unsigned seed : {1u, 2u, 3u}) {
-    const double d = 15e-9;
-    const long n = 300;
-    Box box;
-    box.periodic = {true, true, false};
-    const double a = std::cbrt(static_cast<double>(n) * std::numbers::pi / 6 * d * d * d / 0.62 / 1.5);
-    box.length = {a, a, 1.5 * a};
-    generate::FbaParams fp;
-    fp.target_porosity = 0.38;
-    Random rng(seed);
-    const std::vector<double> radii = generate::fba_class_radii(n, generate::SizeClasses{}, rng);
-    Packing p = generate::fba_pack(box, radii, fp, rng).packing;
-    generate::BondingOptions bo;
-    bo.cutoff_ratio = 1.75;
-    generate::add_bonds(p, bo);
+    const Packing p = test::random_bonded_sample(300, seed, 7.5e-9);  // the tests' sample
     mechanics::UniaxialCompressionSetup setup;
     setup.options.threads = 1;
     setup.options.max_strain = 0.05;

@@ -17,6 +17,7 @@
 #include "packlab/generate/lattice.hpp"
 #include "packlab/mechanics/opal_materials.hpp"
 #include "packlab/mechanics/static_loading.hpp"
+#include "silica_compression.hpp"
 
 using namespace packlab;
 using namespace packlab::mechanics;
@@ -44,14 +45,7 @@ OscillatoryShearOptions shear_options(const std::string& solver, const std::stri
 }
 
 UniaxialCompressionOptions compression_options(const std::string& solver, double strength = inf) {
-  OpalMaterials m;
-  m.silica_youngs_modulus = E;
-  m.silica_poisson_ratio = nu;
-  m.silica_strength = strength;
-  UniaxialCompressionOptions o;
-  o.types = opal_particle_types(m);
-  o.bond_materials = opal_bond_materials(m);
-  o.threads = 1;
+  UniaxialCompressionOptions o = test::silica_compression_options(E, nu, strength);
   o.solver = solver;
   return o;
 }

@@ -17,6 +17,7 @@
 #include "packlab/mechanics/opal_materials.hpp"
 #include "packlab/mechanics/static_loading.hpp"
 #include "packlab/mechanics/static_solver.hpp"
+#include "silica_compression.hpp"
 
 using namespace packlab;
 using namespace packlab::mechanics;
@@ -28,14 +29,7 @@ constexpr double r = 7.5e-9;             // the opal paper's 15 nm particles
 constexpr double E = 6.53e9, nu = 0.17;  // silica bonds
 
 UniaxialCompressionOptions compression_options(const std::string& backend, double strength = inf) {
-  OpalMaterials m;
-  m.silica_youngs_modulus = E;
-  m.silica_poisson_ratio = nu;
-  m.silica_strength = strength;
-  UniaxialCompressionOptions o;
-  o.types = opal_particle_types(m);
-  o.bond_materials = opal_bond_materials(m);
-  o.threads = 1;
+  UniaxialCompressionOptions o = test::silica_compression_options(E, nu, strength);
   o.solver = "static";
   o.solver_backend = backend;
   return o;

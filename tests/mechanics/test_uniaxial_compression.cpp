@@ -7,6 +7,7 @@
 #include <limits>
 #include <numbers>
 
+#include "../test_packings.hpp"
 #include "packlab/core/error.hpp"
 #include "packlab/core/random.hpp"
 #include "packlab/generate/bonding.hpp"
@@ -14,7 +15,7 @@
 #include "packlab/generate/lattice.hpp"
 #include "packlab/mechanics/opal_materials.hpp"
 #include "packlab/mechanics/uniaxial_compression.hpp"
-#include "../test_packings.hpp"
+#include "silica_compression.hpp"
 
 using namespace packlab;
 using namespace packlab::mechanics;
@@ -25,22 +26,10 @@ constexpr double inf = std::numeric_limits<double>::infinity();
 constexpr double r = 7.5e-9;  // the paper's 15 nm particles
 constexpr double E = 6.53e9, nu = 0.17;
 
-UniaxialCompressionOptions options(double strength = inf) {
-  OpalMaterials m;
-  m.silica_youngs_modulus = E;
-  m.silica_poisson_ratio = nu;
-  m.silica_strength = strength;
-  UniaxialCompressionOptions o;
-  o.types = opal_particle_types(m);
-  o.bond_materials = opal_bond_materials(m);
-  o.threads = 1;
-  return o;
-}
+UniaxialCompressionOptions options(double strength = inf) { return test::silica_compression_options(E, nu, strength); }
 
 // Simple cubic column, 3 x 3 cells across (periodic), `layers` levels, elastic bonds 1.75 d.
-Packing sc_column(int layers) {
-  return test::bonded_lattice(generate::LatticeType::sc, {3, 3, layers}, r, 1.75);
-}
+Packing sc_column(int layers) { return test::bonded_lattice(generate::LatticeType::sc, {3, 3, layers}, r, 1.75); }
 
 }  // namespace
 
@@ -116,20 +105,7 @@ TEST(UniaxialCompression, HalvingTheStrainRateChangesNeitherModulusNorStrength) 
   // periodic x, y), elastic bonds 1.75 d, breakable silica bonds, compressed past its peak at the
   // automatic rate (1e-4 strain per elastic-wave transit, the command line's default) and at
   // half that: E within 0.2 %, strength within 5 %.
-  const double d = 2 * r;
-  const long n = 400;
-  Box box;
-  box.periodic = {true, true, false};
-  const double a = std::cbrt(n * std::numbers::pi / 6 * d * d * d / 0.62 / 1.5);
-  box.length = {a, a, 1.5 * a};
-  generate::FbaParams fp;
-  fp.target_porosity = 0.38;
-  Random rng(3);
-  const std::vector<double> radii = generate::fba_class_radii(n, generate::SizeClasses{}, rng);
-  Packing p = generate::fba_pack(box, radii, fp, rng).packing;
-  generate::BondingOptions bo;
-  bo.cutoff_ratio = 1.75;
-  generate::add_bonds(p, bo);
+  const Packing p = test::random_bonded_sample(400, 3, r);
   UniaxialCompressionSetup setup;
   setup.options.threads = 1;
   setup.options.max_strain = 0.05;
