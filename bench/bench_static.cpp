@@ -1,10 +1,11 @@
 // The quasi-static solver (docs/static-solver.md) on the papers' large cases:
-//   bench_static compress [THREADS] [FILE] [BACKEND] [MAX_BREAKS] [SAVE] [CURVE]
+//   bench_static compress [THREADS] [FILE] [BACKEND] [MAX_BREAKS] [SAVE] [CURVE] [CHECK_INTERVAL]
 //     the ~54,000-particle FCC inverse opal of docs/opal.md (bench/opal_case.hpp; FILE "-"), or
 //     the bonded model / particle packing in FILE: Young's modulus from one solve, then the
 //     strength curve by sequential linear analysis until the test's stop rule or MAX_BREAKS
 //     bond breaks (0: no limit; -1: modulus only). SAVE: write the model built to this file
-//     ("-": none); CURVE: write the envelope (one row per break) to this CSV.
+//     ("-": none); CURVE: write the envelope (one row per break) to this CSV; CHECK_INTERVAL:
+//     check every n-th re-solve (default: the test's, 16; 1 = each).
 //   bench_static compare CSV
 //     static against dynamic on small disordered models, one row per test (the data of
 //     docs/static-solver.md, examples/static/compare.sh): G' of a 70 %-diluted FCC network of
@@ -64,6 +65,7 @@ int compress(int argc, char** argv) {
   const long max_breaks = argc > 5 ? std::atol(argv[5]) : -1;
   const std::string save = argc > 6 ? argv[6] : "";
   const std::string curve_file = argc > 7 ? argv[7] : "";
+  const int check_interval = argc > 8 ? std::atoi(argv[8]) : 0;  // 0: the default
   const auto t_build = std::chrono::steady_clock::now();
   const Packing model = opal_case(file, 4, threads);
   fmt::print("model: {} particles, {} bonds ({:.1f} s to read or build)\n", model.size(), model.bonds.size(),
@@ -77,6 +79,7 @@ int compress(int argc, char** argv) {
   o.solver = "static";
   o.solver_backend = backend;
   o.max_breaks = max_breaks < 0 ? 1 : max_breaks;
+  if (check_interval > 0) o.check_interval = check_interval;
   if (max_breaks < 0) o.max_strain = 1e-6;  // modulus only: no bond reaches its strength
   long points = 0;
   const auto t_run = std::chrono::steady_clock::now();
@@ -103,9 +106,10 @@ int compress(int argc, char** argv) {
       r.youngs_modulus, r.strength, r.strain_at_peak, r.broken_bonds, r.solves, r.factorizations, r.stop_reason);
   fmt::print(
       "unknowns {}, matrix nonzeros {} (lower), factor nonzeros {}; assemble + factorize {:.2f} s, solves {:.2f} s "
-      "(of which checks {:.2f} s; {} PCG iterations), {} downdates {:.2f} s, set-up and links {:.2f} s\n",
-      r.unknowns, r.matrix_nonzeros, r.factor_nonzeros, r.factor_seconds, r.solve_seconds, r.check_seconds,
-      r.pcg_iterations, r.downdates, r.downdate_seconds,
+      "(of which {} checks {:.2f} s, check_interval {}, {} rollbacks; {} PCG iterations), {} downdates {:.2f} s, "
+      "set-up and links {:.2f} s\n",
+      r.unknowns, r.matrix_nonzeros, r.factor_nonzeros, r.factor_seconds, r.solve_seconds, r.checks, r.check_seconds,
+      o.check_interval, r.rollbacks, r.pcg_iterations, r.downdates, r.downdate_seconds,
       seconds - r.factor_seconds - r.solve_seconds - r.downdate_seconds);
   const double bytes_per_bond = static_cast<double>(r.solver_bytes) / static_cast<double>(r.bonds);
   fmt::print(

@@ -343,6 +343,55 @@ TEST(StaticSolver, ResolveAfterRemovingLinksEqualsAFreshFactorization) {
     }
 }
 
+// Checking only every 16th re-solve of the sequential linear analysis changes nothing while the
+// checks pass (the unchecked solves are the checked ones: a passed check leaves the solution as
+// it is), and when a check fails the analysis goes back to the last checked break and redoes the
+// breaks since with a fresh factorization: the same breaks at the same strains, the curve
+// without duplicated points. The failing checks are forced by a tolerance no solve can reach
+// (each check then refines, gives up and factorizes anew).
+TEST(StaticSolver, SequentialLinearAnalysisWithSparseChecksRollsBackWhenACheckFails) {
+  if (static_solver_backends().front() != "cholmod") GTEST_SKIP() << "built without CHOLMOD";
+  const Packing p = random_bonded_sample(300, 3);
+  UniaxialCompressionSetup setup;
+  setup.options.threads = 1;
+  setup.options.max_strain = 0.05;
+  setup.finish(p);
+  for (auto& b : setup.options.bond_materials) b.compressive_breakage = true;
+  setup.options.solver = "static";
+  setup.options.check_interval = 1;
+  const UniaxialCompressionResult each = run_uniaxial_compression(p, setup.options);
+  ASSERT_GT(each.broken_bonds, 40u);
+  EXPECT_EQ(each.rollbacks, 0);
+  EXPECT_EQ(each.checks, each.downdates > 0 ? static_cast<long>(each.solves) - 1 : 0);
+  auto same_analysis = [&](const UniaxialCompressionResult& r, double tolerance) {
+    ASSERT_EQ(r.breaks.size(), each.breaks.size());
+    for (std::size_t k = 0; k < r.breaks.size(); ++k) {
+      EXPECT_EQ(r.breaks[k].bond, each.breaks[k].bond) << "break " << k;
+      EXPECT_NEAR(r.break_strain[k], each.break_strain[k], tolerance * each.break_strain[k]) << "break " << k;
+    }
+    ASSERT_EQ(r.curve.size(), each.curve.size());
+    for (std::size_t k = 0; k < r.curve.size(); ++k) {
+      EXPECT_EQ(r.curve[k].broken_bonds, each.curve[k].broken_bonds) << "point " << k;
+      EXPECT_NEAR(r.curve[k].stress, each.curve[k].stress, tolerance * each.strength) << "point " << k;
+    }
+    EXPECT_EQ(r.stop_reason, each.stop_reason);
+    EXPECT_NEAR(r.strength, each.strength, tolerance * each.strength);
+    for (std::size_t b = 0; b < r.model.bonds.size(); ++b) EXPECT_EQ(r.model.bonds.state[b], each.model.bonds.state[b]);
+  };
+  setup.options.check_interval = 16;
+  const UniaxialCompressionResult sparse = run_uniaxial_compression(p, setup.options);
+  same_analysis(sparse, 0.0);
+  EXPECT_EQ(sparse.rollbacks, 0);
+  EXPECT_LT(sparse.checks, each.checks / 8);
+  EXPECT_GT(sparse.checks, 0);
+
+  setup.options.check_tolerance = 1e-30;
+  const UniaxialCompressionResult rolled_back = run_uniaxial_compression(p, setup.options);
+  same_analysis(rolled_back, 1e-9);
+  EXPECT_GT(rolled_back.rollbacks, 2);
+  EXPECT_GT(rolled_back.factorizations, static_cast<std::size_t>(rolled_back.rollbacks));
+}
+
 TEST(StaticSolver, EnergyCheckOfADowndatedFactorEqualsThatOfAFreshFactorization) {
   // The refinement's energy check r^T K^-1 r takes the forward half of a solve on CHOLMOD's
   // factors (LL^T fresh, LDL^T after downdates): against Eigen's full solve on the same links.

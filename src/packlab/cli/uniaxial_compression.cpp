@@ -77,9 +77,11 @@ void add_test_compress(CLI::App& test) {
           fmt::print("{} particles ({} fixed), {} bonds ({} left out), H0 = {:.4g} m, A = {:.4g} m^2\n", r.particles,
                      r.fixed_particles, r.bonds, r.dropped_bonds, r.height, r.area);
           if (r.solver == "static") {
-            fmt::print("static solver ({}): {} solves, {} factorizations, {} downdates, {:.1f} MB; {}\n",
-                       s.options.solver_backend, r.solves, r.factorizations, r.downdates,
-                       static_cast<double>(r.solver_bytes) * 1e-6, r.stop_reason);
+            fmt::print(
+                "static solver ({}): {} solves, {} factorizations, {} downdates, {} checks, {} rollbacks, {:.1f} MB; "
+                "{}\n",
+                s.options.solver_backend, r.solves, r.factorizations, r.downdates, r.checks, r.rollbacks,
+                static_cast<double>(r.solver_bytes) * 1e-6, r.stop_reason);
             fmt::print(
                 "Young's modulus {:.5g} GPa (linear solve), Poisson's ratio {}, strength {:.5g} MPa at strain "
                 "{:.4g} (sequential linear analysis), {} broken bonds\n",

@@ -136,7 +136,11 @@ void add_uniaxial_compression_options(ConfigSchema& schema, mechanics::UniaxialC
             "Static solver, petsc backend: PETSc options, e.g. \"-ksp_type cg -pc_type gamg\" (default: Cholesky by "
             "MUMPS)")
       .integer("max_breaks", o.max_breaks, "Static solver: stop after this many bond breaks (0 = no limit)")
-      .range({0.0, 1e12, false, false});
+      .range({0.0, 1e12, false, false})
+      .integer("check_interval", o.check_interval,
+               "Static solver: check every n-th re-solve after a bond break against the matrix (1 = each); a failed "
+               "check goes back to the last checked break (docs/static-solver.md)")
+      .range({1.0, 1e6, false, false});
 }
 
 namespace {

@@ -6,6 +6,7 @@
 #include <chrono>
 #include <cmath>
 #include <limits>
+#include <span>
 
 #include "packlab/core/error.hpp"
 #include "packlab/mechanics/static_loading.hpp"
@@ -54,6 +55,8 @@ UniaxialCompressionResult run_static_uniaxial_compression(const Packing& bonded_
   solver_options.backend = options.solver_backend;
   solver_options.petsc_options = options.petsc_options;
   solver_options.threads = options.threads;
+  solver_options.check_interval = options.check_interval;
+  solver_options.tolerance = options.check_tolerance;
   StaticSolver solver(links, model.fixed, solver_options);
 
   // Unit strain: the glued particles move down by H0, the substrate stays.
@@ -147,10 +150,42 @@ UniaxialCompressionResult run_static_uniaxial_compression(const Packing& bonded_
   double peak = 0.0, last_stress1 = 0.0;
   result.stop_reason = "reached max_strain";
   add_point(0.0, 0.0, 0.0);
+  // With solver checks every check_interval-th re-solve (static_solver.hpp), the state after
+  // the last verified solve's decisions, to go back to when a check finds the factor drifted.
+  std::vector<std::size_t> broken_links;  // per break, its link
+  struct Verified {
+    std::size_t curve = 0, breaks = 0, snapshots = 0, next_snapshot = 0, intact_bonds = 0;
+    double peak = 0.0, strain_at_peak = 0.0;
+  } verified;
+  auto save_verified = [&] {
+    verified = {result.curve.size(),  result.breaks.size(), result.snapshots.size(), next_snapshot, intact_bonds, peak,
+                result.strain_at_peak};
+  };
+  auto roll_back = [&] {
+    const std::span<const std::size_t> undone(broken_links.begin() + static_cast<long>(verified.breaks),
+                                              broken_links.end());
+    for (std::size_t k : undone) model.bonds.state[static_cast<std::size_t>(links.bond[k])] = 0;
+    solver.restore(undone);
+    broken_links.resize(verified.breaks);
+    result.breaks.resize(verified.breaks);
+    result.break_strain.resize(verified.breaks);
+    result.curve.resize(verified.curve);
+    result.snapshots.resize(verified.snapshots);
+    next_snapshot = verified.next_snapshot;
+    intact_bonds = verified.intact_bonds;
+    peak = verified.peak;
+    result.strain_at_peak = verified.strain_at_peak;
+  };
+  save_verified();
   for (;;) {
+    if (solver.verified()) save_verified();
     q = unit_q;
     solver.solve(q, no_gradient);
     unit_q = q;
+    if (solver.drifted()) {
+      roll_back();
+      continue;
+    }
     const LinkScan scan = scan_links(q);
     const double stress1 = scan.plate_force / result.area;  // stress at unit strain
     last_stress1 = stress1;
@@ -158,6 +193,10 @@ UniaxialCompressionResult run_static_uniaxial_compression(const Packing& bonded_
       // The load drop at the last break's strain: stop once past the peak below stop_drop x peak.
       const double strain = result.break_strain.back();
       if (options.stop_drop > 0.0 && strain >= result.strain_at_peak && strain * stress1 < options.stop_drop * peak) {
+        if (!solver.check_last()) {
+          roll_back();
+          continue;
+        }
         add_point(strain, stress1, scan.energy);
         result.stop_reason = fmt::format("stress fell below {:g} x peak after the peak", options.stop_drop);
         break;
@@ -179,6 +218,15 @@ UniaxialCompressionResult run_static_uniaxial_compression(const Packing& bonded_
         if (failure_ratio[k] >= ratio * (1.0 - 1e-12)) critical.push_back(k);
     const double break_strain = ratio > 0.0 ? 1.0 / ratio : std::numeric_limits<double>::infinity();
     const double energy1 = scan.energy;
+    // The run ends here: its last solve must be verified before it counts.
+    const bool last =
+        break_strain > options.max_strain ||
+        (options.max_breaks > 0 && static_cast<long>(result.breaks.size() + critical.size()) >= options.max_breaks) ||
+        intact_bonds == critical.size();
+    if (last && !solver.check_last()) {
+      roll_back();
+      continue;
+    }
     while (next_snapshot < pending.size() && pending[next_snapshot] < break_strain) {
       snapshot(pending[next_snapshot], pending[next_snapshot], pending[next_snapshot] * stress1);
       ++next_snapshot;
@@ -202,6 +250,7 @@ UniaxialCompressionResult run_static_uniaxial_compression(const Packing& bonded_
       const Vec3 mid = model.position[static_cast<std::size_t>(links.i[k])] + 0.5 * links.branch[k];
       result.breaks.push_back({b, nan, model.box.wrap(mid)});
       result.break_strain.push_back(break_strain);
+      broken_links.push_back(k);
     }
     result.curve.back().broken_bonds = result.breaks.size();
     if (options.max_breaks > 0 && static_cast<long>(result.breaks.size()) >= options.max_breaks) {
@@ -234,6 +283,8 @@ UniaxialCompressionResult run_static_uniaxial_compression(const Packing& bonded_
   result.factor_nonzeros = st.factor_nonzeros;
   result.pcg_iterations = st.pcg_iterations;
   result.downdates = st.downdates;
+  result.checks = st.checks;
+  result.rollbacks = st.rollbacks;
   result.downdate_seconds = st.downdate_seconds;
   result.check_seconds = st.check_seconds;
   result.factor_seconds = st.factor_seconds + st.assemble_seconds;

@@ -486,23 +486,38 @@ void StaticSolver::solve(std::span<double> q, const DisplacementGradient& gradie
   const int saved_threads = omp_get_max_threads();
   omp_set_num_threads(std::max(1, options_.threads));
   bool solved = true;
+  drifted_ = false;
   if (!matrix_changed_) {
     if (factor_->backward_solve(x))
       ++stats_.backward_only_solves;
     else
       factor_->solve(f, x);
     // A downdated factor carries the rounding of its modifications: check the solution on the
-    // matrix of the active links and refine.
+    // matrix of the active links and refine (each check_interval-th solve; header comment).
     // So does an iterative solve (PETSc with a Krylov method).
-    if (downdates_since_factorization_ > 0 || !factor_->exact()) {
-      const auto t1 = std::chrono::steady_clock::now();
-      solved = refine(f, x) >= 0;
-      stats_.check_seconds += seconds_since(t1);
+    verified_ = downdates_since_factorization_ == 0 && factor_->exact();
+    if (!verified_) {
+      const bool check = !factor_->exact() || options_.check_interval <= 1 || strict_solves_ > 0 ||
+                         unverified_solves_ + 1 >= options_.check_interval;
+      if (check) {
+        const auto t1 = std::chrono::steady_clock::now();
+        const int iterations = refine(f, x);
+        solved = iterations >= 0;
+        // Refinement after unchecked solves: the factor drifted somewhere since the last check.
+        drifted_ = iterations != 0 && unverified_solves_ > 0;
+        if (strict_solves_ > 0) --strict_solves_;
+        verified_ = true;
+        ++stats_.checks;
+        stats_.check_seconds += seconds_since(t1);
+      } else {
+        ++stats_.unchecked_solves;
+      }
     }
   } else {
     // The factor is of the matrix before the links were switched off: precondition with it.
     assembly_.assemble(active_, options_.regularization);
     solved = refine(f, x) >= 0;
+    verified_ = true;
   }
   if (!solved) {
     // Too far from the factorized matrix: factorize the current one and solve directly.
@@ -510,12 +525,50 @@ void StaticSolver::solve(std::span<double> q, const DisplacementGradient& gradie
     factorize();
     omp_set_num_threads(std::max(1, options_.threads));
     factor_->solve(f, x);
+    verified_ = true;
   }
   omp_set_num_threads(saved_threads);
+  if (drifted_) strict_solves_ = unverified_solves_ + 1;  // kept for restore()
+  unverified_solves_ = verified_ ? 0 : unverified_solves_ + 1;
   assembly_.scatter(x, q);
   last_load_ = f;
+  last_solution_ = std::move(x);
   ++stats_.solves;
   stats_.solve_seconds += seconds_since(t0);
+}
+
+bool StaticSolver::check_last() {
+  if (verified_ || !factor_) return true;
+  const auto t0 = std::chrono::steady_clock::now();
+  const int saved_threads = omp_get_max_threads();
+  omp_set_num_threads(std::max(1, options_.threads));
+  std::vector<double> x = last_solution_;
+  const int iterations = refine(last_load_, x);
+  omp_set_num_threads(saved_threads);
+  ++stats_.checks;
+  stats_.check_seconds += seconds_since(t0);
+  stats_.solve_seconds += seconds_since(t0);
+  drifted_ = iterations != 0;
+  if (drifted_) {
+    strict_solves_ = unverified_solves_ + 1;
+    return false;
+  }
+  verified_ = true;
+  unverified_solves_ = 0;
+  return true;
+}
+
+void StaticSolver::restore(std::span<const std::size_t> reactivated) {
+  for (std::size_t k : reactivated) active_[k] = 1;
+  // Factorize the active set anew at the next solve (the assembly's values follow it there).
+  factor_valid_ = false;
+  matrix_changed_ = false;
+  pending_downdates_.clear();
+  last_load_.clear();
+  drifted_ = false;
+  verified_ = false;
+  unverified_solves_ = 0;
+  ++stats_.rollbacks;
 }
 
 }  // namespace packlab::mechanics

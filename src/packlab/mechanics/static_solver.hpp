@@ -9,7 +9,11 @@
 // bonds) change the matrix by a low-rank term (rank <= 6 per link). With CHOLMOD the factor is
 // modified in place (a rank-r downdate, cholmod_updown) and each solve is checked against the
 // matrix of the active links and refined by conjugate gradients preconditioned with the factor
-// (usually zero or one iteration). Eigen's factor cannot be modified: the next solves run
+// (usually zero or one iteration). With `check_interval` k > 1 only every k-th solve after a
+// downdate is checked: the others are trusted until the next check, and a check that finds the
+// factor drifted (it needed refinement) flags drifted(), upon which the caller rolls back to its
+// last verified() solve (restore()). Sequential linear analysis re-solves thousands of times and
+// a check costs as much as the solve it checks. Eigen's factor cannot be modified: the next solves run
 // preconditioned conjugate gradients on the new matrix with the old factor as the
 // preconditioner (in exact arithmetic r + 1 iterations for a change of rank r); so do PETSc's.
 // Either way the matrix is factorized anew when the refinement takes more than
@@ -38,8 +42,10 @@ struct StaticSolverOptions {
   double tolerance = 1e-10;       // PCG: relative residual |r| / |f|
   int refactor_iterations = 40;   // PCG iterations above which the matrix is factorized anew
   bool modify_factor = true;      // CHOLMOD: take switched-off links out of the factor (downdate)
-  int threads = 1;                // BLAS threads of the CHOLMOD factorization (of each rank with PETSc)
-  std::string petsc_options;      // PETSc: options database entries, e.g. "-ksp_type cg -pc_type gamg"
+  // Solves after downdates: check every check_interval-th (1: each; see the header comment).
+  int check_interval = 1;
+  int threads = 1;            // BLAS threads of the CHOLMOD factorization (of each rank with PETSc)
+  std::string petsc_options;  // PETSc: options database entries, e.g. "-ksp_type cg -pc_type gamg"
 };
 
 // The backends this build has ("cholmod", "eigen", "petsc"; "petsc": static_solver_petsc.hpp).
@@ -56,6 +62,9 @@ struct StaticSolverStats {
   long pcg_iterations = 0;
   long downdates = 0;             // links taken out of the factor by a rank update
   long backward_only_solves = 0;  // solves from the forward half kept through the downdates
+  long checks = 0;                // solves after downdates checked against the matrix (refine())
+  long unchecked_solves = 0;      // solves after downdates trusted until a later check
+  long rollbacks = 0;             // restore() calls: a check found the factor drifted
   double assemble_seconds = 0.0, factor_seconds = 0.0, solve_seconds = 0.0, downdate_seconds = 0.0;
   double check_seconds = 0.0;  // of solve_seconds: the check (and refinement) of solves after downdates
 };
@@ -78,6 +87,18 @@ class StaticSolver {
   const std::vector<std::uint8_t>& active_links() const { return active_; }
   const StaticLinks& links() const { return links_; }
   const StaticSolverStats& stats() const { return stats_; }
+  // Whether the last solve is verified: by a fresh factorization, or checked against the matrix
+  // of the active links. Only with check_interval > 1 can a solve be unverified.
+  bool verified() const { return verified_; }
+  // A check (with check_interval > 1) needed refinement after unchecked solves: those may be
+  // off, and whatever the caller decided from them since its last verified solve must be redone.
+  bool drifted() const { return drifted_; }
+  // Checks the last solve now (the end of a run): its verified() after, drifted() when it failed.
+  bool check_last();
+  // Back to the active set of the last verified solve: `reactivated` are the links deactivated
+  // since. The next solve factorizes anew; the solves after it are each checked until past the
+  // point where the drift was found.
+  void restore(std::span<const std::size_t> reactivated);
   // r^T K^-1 r by the current factor (r: one entry per unknown, stats().unknowns): the
   // energy-norm measure of the refinement's convergence check, after at least one solve.
   double inverse_norm_squared(const std::vector<double>& r) const;
@@ -100,6 +121,10 @@ class StaticSolver {
   long downdates_since_factorization_ = 0;
   std::vector<std::size_t> pending_downdates_;  // deactivated, still in the factor
   std::vector<double> last_load_;               // the right-hand side of the last solve
+  std::vector<double> last_solution_;           // its solution (for check_last())
+  bool verified_ = false, drifted_ = false;
+  long unverified_solves_ = 0;  // solves since the last verified one
+  long strict_solves_ = 0;      // solves after downdates still to be checked each (after restore())
   StaticSolverStats stats_;
 };
 

@@ -104,6 +104,10 @@ struct UniaxialCompressionOptions {
   std::string solver_backend = "auto";  // static: "auto", "cholmod", "eigen" or "petsc"
   std::string petsc_options;            // static, petsc backend: PETSc options (docs/static-solver.md)
   long max_breaks = 0;                  // static: stop after this many bond breaks (0 = no limit)
+  // static: re-solves after bond removals checked against the matrix every check_interval-th
+  // (1 = each); a failed check rolls the analysis back to the last checked break (static_solver.hpp).
+  int check_interval = 16;
+  double check_tolerance = 1e-10;  // static: relative residual and energy-norm error of a check (API only)
   // Called at each curve point (progress); may be empty.
   std::function<void(const UniaxialCompressionPoint&)> on_point;
   // Resumable runs of the dynamic solver (`packlab test compress --resume`, cli/checkpoint.hpp):
@@ -144,6 +148,8 @@ struct UniaxialCompressionResult {
   std::size_t unknowns = 0, matrix_nonzeros = 0, factor_nonzeros = 0;  // static
   long pcg_iterations = 0;                                             // static
   long downdates = 0;                                                  // static: bonds taken out of the factor
+  long checks = 0;                                                     // static: re-solves checked against the matrix
+  long rollbacks = 0;  // static: checks that found the factor drifted (the analysis went back)
   double factor_seconds = 0.0, solve_seconds = 0.0, downdate_seconds = 0.0;  // static [s]
   double check_seconds = 0.0;  // static: of solve_seconds, the checks of re-solves after downdates [s]
   Packing model;               // the model as run (final positions, bond states)
