@@ -8,6 +8,7 @@
 #include <cmath>
 #include <limits>
 #include <numbers>
+#include <vector>
 
 #include "../test_packings.hpp"
 #include "packlab/core/error.hpp"
@@ -79,7 +80,93 @@ dem::EngineConfig contact_bond_config(double kn, double ks) {
   return c;
 }
 
+// Three particles of radius r0 on a line along x, joined by two contact bonds whose gap `gap`
+// (the centre distance minus 2 r0) gives each the tension N = k_n gap (gap < 0: an overlap,
+// compression).
+Packing string_of_three(double gap) {
+  Packing p = test::open_cube(10.0 * r0);
+  const double L = 2.0 * r0 + gap;
+  for (int k = 0; k < 3; ++k) p.add(Vec3{5.0 * r0 + (k - 1) * L, 5.0 * r0, 5.0 * r0}, r0);
+  p.bonds.add(0, 1, {0, 0, 0}, 0, L);
+  p.bonds.add(1, 2, {0, 0, 0}, 0, L);
+  return p;
+}
+
 }  // namespace
+
+// The geometric stiffness of a pre-stress (static_stiffness.hpp) on a string: particles 0 and 2
+// prescribed, 1 free, two contact bonds of tension N (L apart). Across the string the free
+// particle's translational stiffness is 2 k_s + 2 N / L (2 k_s without the term); moving it
+// across by delta turns the engine's pre-forces by -(2 N / L) delta, the term's force; and with
+// particle 2 moved across by delta the free particle rolls to delta / 2 with both shear springs
+// unloaded, so that particle 2 feels only its link's turned pre-force, -(N / L) delta / 2.
+// Tension stiffens, compression softens: a flipped sign fails every check.
+TEST(StaticSolver, GeometricStiffnessOfAPrestressedStringIsTwoNOverL) {
+  const double kn = 100.0, ks = 10.0;
+  const dem::EngineConfig config = contact_bond_config(kn, ks);
+  const std::vector<std::uint8_t> prescribed{1, 0, 1};
+  for (const double gap : {2e-3 * r0, -2e-3 * r0}) {
+    SCOPED_TRACE(gap > 0.0 ? "tension" : "compression");
+    const Packing p = string_of_three(gap);
+    const double L = 2.0 * r0 + gap, N = kn * gap, g = N / L;
+    const StaticLinks plain = linearize_links(p, config);
+    EXPECT_TRUE(plain.prestress.empty());
+    const StaticLinks links = linearize_links(p, config, true);
+    ASSERT_EQ(links.size(), 2u);
+    ASSERT_EQ(links.prestress.size(), 2u);
+    for (std::size_t k = 0; k < 2; ++k) EXPECT_NEAR(links.prestress[k], N, 1e-9 * std::abs(N));
+
+    StiffnessAssembly with(links, prescribed), without(plain, prescribed);
+    with.assemble({}, 0.0);
+    without.assemble({}, 0.0);
+    auto diagonal = [](const StiffnessAssembly& a, int c) {
+      return a.values()[static_cast<std::size_t>(a.column_start()[static_cast<std::size_t>(c)])];
+    };
+    EXPECT_NEAR(diagonal(with, 0), 2.0 * kn, 1e-12 * kn);  // along the string: the springs alone
+    for (int c : {1, 2}) {
+      EXPECT_NEAR(diagonal(without, c), 2.0 * ks, 1e-12 * ks);
+      EXPECT_NEAR(diagonal(with, c), 2.0 * ks + 2.0 * g, 1e-9 * ks);
+    }
+    for (std::size_t k = 0; k < 2; ++k) {  // each link's 12 x 12 matrix stays symmetric
+      const auto K = link_stiffness(links, k);
+      for (std::size_t a = 0; a < 6; ++a)
+        for (std::size_t b = 0; b < 6; ++b) {
+          EXPECT_EQ(K[0][6 * a + b], K[0][6 * b + a]);
+          EXPECT_EQ(K[3][6 * a + b], K[3][6 * b + a]);
+          EXPECT_EQ(K[1][6 * a + b], K[2][6 * b + a]);
+        }
+    }
+
+    // The engine's forces with the free particle moved across (a fresh engine: no shear history).
+    const double delta = 1e-7 * L;
+    Packing moved = p;
+    moved.position[1].y += delta;
+    const dem::ContactForces f = dem::Engine(moved, config).contact_forces();
+    double engine_fy = 0.0;
+    for (std::size_t c = 0; c < f.size(); ++c) {
+      if (f.j[c] == 1) engine_fy += f.force[c].y;
+      if (f.i[c] == 1) engine_fy -= f.force[c].y;
+    }
+    EXPECT_NEAR(engine_fy, -2.0 * g * delta, 1e-5 * 2.0 * std::abs(g) * delta);
+    std::vector<double> q(18, 0.0);
+    q[7] = delta;
+    const double term_fy =
+        link_response(links, 0, q, {}).geometric_force_on_j.y - link_response(links, 1, q, {}).geometric_force_on_j.y;
+    EXPECT_NEAR(term_fy, engine_fy, 1e-5 * std::abs(engine_fy));
+
+    // A solve with particle 2 moved across.
+    for (const StaticLinks* l : {&links, &plain}) {
+      StaticSolver solver(*l, prescribed, {});
+      std::vector<double> u(18, 0.0);
+      u[13] = delta;
+      solver.solve(u, {});
+      EXPECT_NEAR(u[7], 0.5 * delta, 1e-9 * delta);
+      const LinkResponse r = link_response(*l, 1, u, {});
+      const double expected = l == &links ? -g * 0.5 * delta : 0.0;
+      EXPECT_NEAR(r.force_on_j.y, expected, 1e-7 * std::abs(g) * delta);
+    }
+  }
+}
 
 // The closed form of tests/mechanics/test_oscillatory_shear.cpp (n layers of a simple cubic
 // network of contact bonds between rigid plates): G = k_s n / ((2n + 1) d), in all six

@@ -23,6 +23,7 @@
 #pragma once
 
 #include <array>
+#include <span>
 
 #include "packlab/core/packing.hpp"
 #include "packlab/dem/engine.hpp"
@@ -35,8 +36,17 @@ namespace packlab::mechanics {
 UniaxialCompressionResult run_static_uniaxial_compression(const Packing& bonded_model,
                                                           const UniaxialCompressionOptions& options);
 
+// `prestress_scale` != 0: the linearization includes the geometric stiffness of the links'
+// normal forces in the set-up (static_stiffness.hpp), scaled by it (1: as the engine computes
+// them; 0: none, the default), and the region stress the change of the branches times those
+// forces. An experiment (docs/shear.md, the check on n = 0.25, z:x; bench_static prestress), not
+// a user option.
 ShearRun run_static_shear_orientation(const Packing& bonded, const ShearOrientation& orientation,
-                                      const OscillatoryShearOptions& options);
+                                      const OscillatoryShearOptions& options, double prestress_scale = 0.0);
+// The shear stress of the static set-up for the solution q (6 per particle): shear_stress of the
+// links' forces, with the pre-stress's part of the region stress when links.prestress is set.
+ShearStress static_shear_stress(const StaticLinks& links, std::span<const double> q, const ShearSetup& setup,
+                                int regions);
 
 struct PeriodicStiffness {
   // Voigt order xx, yy, zz, yz, xz, xy; engineering shear strains (gamma = 2 eps), so that

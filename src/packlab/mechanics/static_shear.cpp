@@ -14,8 +14,33 @@
 
 namespace packlab::mechanics {
 
+ShearStress static_shear_stress(const StaticLinks& links, std::span<const double> q, const ShearSetup& setup,
+                                int regions) {
+  const DisplacementGradient no_gradient{};
+  ShearStress st = shear_stress(link_forces(links, q, no_gradient), setup, regions);
+  if (!links.prestress.empty()) {
+    // The region stress is the virial of the current state, 1/2 sum l (x) F: its increment is
+    // l (x) dF (above, the pre-force's turn included) + dl (x) F0, the pre-forces F0 = -N n on
+    // j times the change of the branches dl = u_j - u_i. The plate force has no such part.
+    dem::ContactForces turned;
+    for (std::size_t k = 0; k < links.size(); ++k) {
+      if (links.prestress[k] == 0.0) continue;
+      const auto i = static_cast<std::size_t>(links.i[k]), j = static_cast<std::size_t>(links.j[k]);
+      turned.i.push_back(links.i[k]);
+      turned.j.push_back(links.j[k]);
+      turned.kind.push_back(dem::ContactForces::contact);  // not counted as a bond's load
+      turned.branch.push_back(Vec3{q[6 * j] - q[6 * i], q[6 * j + 1] - q[6 * i + 1], q[6 * j + 2] - q[6 * i + 2]});
+      turned.force.push_back(-links.prestress[k] / norm(links.branch[k]) * links.branch[k]);
+    }
+    const ShearStress extra = shear_stress(turned, setup, regions);
+    for (std::size_t r = 0; r < st.region_stress.size(); ++r) st.region_stress[r] += extra.region_stress[r];
+    st.stress += extra.stress;
+  }
+  return st;
+}
+
 ShearRun run_static_shear_orientation(const Packing& bonded, const ShearOrientation& orientation,
-                                      const OscillatoryShearOptions& options) {
+                                      const OscillatoryShearOptions& options, double prestress_scale) {
   validate(options);
   const auto t0 = std::chrono::steady_clock::now();
   ShearRun run;
@@ -27,7 +52,8 @@ ShearRun run_static_shear_orientation(const Packing& bonded, const ShearOrientat
   run.plate_particles = setup.lower + setup.upper;
   run.bonds = setup.packing.bonds.size();
   const dem::EngineConfig config = shear_engine_config(options);
-  const StaticLinks links = linearize_links(setup.packing, config);
+  StaticLinks links = linearize_links(setup.packing, config, prestress_scale != 0.0);
+  for (double& N : links.prestress) N *= prestress_scale;
   std::vector<std::uint8_t> prescribed(setup.packing.size());
   for (std::size_t k = 0; k < prescribed.size(); ++k) prescribed[k] = setup.role[k] != 0 ? 1 : 0;
   StaticSolverOptions solver_options;
@@ -43,7 +69,7 @@ ShearRun run_static_shear_orientation(const Packing& bonded, const ShearOrientat
     if (setup.role[k] == 2) q[6 * k] = strain * setup.height;
   const DisplacementGradient no_gradient{};
   solver.solve(q, no_gradient);
-  const ShearStress st = shear_stress(link_forces(links, q, no_gradient), setup, options.regions);
+  const ShearStress st = static_shear_stress(links, q, setup, options.regions);
   double energy = 0.0;
   for (std::size_t k = 0; k < links.size(); ++k) energy += link_response(links, k, q, no_gradient).energy;
 

@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 #include <numeric>
+#include <stdexcept>
 
 #include "packlab/core/error.hpp"
 
@@ -59,7 +60,7 @@ std::size_t StaticLinks::bonds() const {
   return static_cast<std::size_t>(std::count_if(bond.begin(), bond.end(), [](int b) { return b >= 0; }));
 }
 
-StaticLinks linearize_links(const Packing& packing, const dem::EngineConfig& config) {
+StaticLinks linearize_links(const Packing& packing, const dem::EngineConfig& config, bool prestress) {
   // The engine validates the packing and the configuration and finds the touching pairs.
   const dem::Engine engine(packing, config);
   const dem::ContactForces touching = engine.contact_forces();
@@ -69,6 +70,13 @@ StaticLinks linearize_links(const Packing& packing, const dem::EngineConfig& con
     return config.types.size() == 1 ? config.types[0] : config.types[static_cast<std::size_t>(type)];
   };
   (void)type_count;
+  // The engine's intact bonds in its list come in the packing's bond order, as the links do.
+  std::vector<std::size_t> bond_entry;
+  if (prestress)
+    for (std::size_t c = 0; c < touching.size(); ++c)
+      if (touching.kind[c] == dem::ContactForces::bond) bond_entry.push_back(c);
+  // The tension of the engine's force on j along the link: N = -F . n.
+  auto tension = [&](std::size_t c, const dem::ContactGeometry& g) { return -dot(touching.force[c], g.normal); };
 
   // Bonds (packing order), then the touching unbonded pairs.
   const Bonds& bonds = packing.bonds;
@@ -92,6 +100,13 @@ StaticLinks linearize_links(const Packing& packing, const dem::EngineConfig& con
         g.rest_length = bonds.rest_length[b];
         const auto& params = list->size() == 1 ? (*list)[0] : (*list)[static_cast<std::size_t>(bonds.material[b])];
         add_link(links, bonds.i[b], bonds.j[b], d, g, Law::tangent(g, params), static_cast<int>(b));
+        if (prestress) {
+          const std::size_t m = links.size() - 1;
+          if (m >= bond_entry.size() || touching.i[bond_entry[m]] != bonds.i[b] ||
+              touching.j[bond_entry[m]] != bonds.j[b])
+            throw std::logic_error("linearize_links: the engine's bond forces are not in the packing's bond order");
+          links.prestress.push_back(tension(bond_entry[m], g));
+        }
       }
     }
   });
@@ -116,6 +131,7 @@ StaticLinks linearize_links(const Packing& packing, const dem::EngineConfig& con
           const auto params = Law::mix(material(packing.type[i]), material(packing.type[j]), config.stiffness_rule);
           const dem::PairTangent t = Law::tangent(g, params);
           add_link(links, touching.i[c], touching.j[c], touching.branch[c], g, {t.normal, t.shear, 0.0, 0.0}, -1);
+          if (prestress) links.prestress.push_back(tension(c, g));
         }
       }
     });
@@ -168,6 +184,19 @@ std::array<std::array<double, 36>, 4> link_stiffness(const StaticLinks& links, s
       for (int r = 0; r < 3; ++r)
         for (int c = 0; c < 3; ++c) K[static_cast<std::size_t>(6 * (r + 3) + c + 3)] += rs * Dt[3 * r + c];
     }
+  // The pre-stress's geometric stiffness (static_stiffness.hpp): (N / L) [P -P; -P P] on the
+  // translations, P = 1 - nn; symmetric like the rest.
+  if (!links.prestress.empty() && links.prestress[k] != 0.0) {
+    const double g = links.prestress[k] / norm(links.branch[k]);
+    for (int ea = 0; ea < 2; ++ea)
+      for (int eb = 0; eb < 2; ++eb) {
+        auto& K = out[static_cast<std::size_t>(2 * ea + eb)];
+        const double gs = sign[ea] * sign[eb] * g;
+        for (int r = 0; r < 3; ++r)
+          for (int c = 0; c < 3; ++c)
+            K[static_cast<std::size_t>(6 * r + c)] += gs * ((r == c ? 1.0 : 0.0) - nn[r] * nn[c]);
+      }
+  }
   return out;
 }
 
@@ -197,6 +226,15 @@ LinkResponse link_response(const StaticLinks& links, std::size_t k, std::span<co
   out.load.bending = s.bending * norm(theta_t);
   out.energy = 0.5 * (s.normal * out.normal_displacement * out.normal_displacement + s.shear * norm2(du_t) +
                       s.torsion * theta_n * theta_n + s.bending * norm2(theta_t));
+  if (!links.prestress.empty() && links.prestress[k] != 0.0) {
+    // The pre-force turning with the line of centres: the centres' relative displacement only.
+    const Vec3 dx = uj - ui + affine;
+    const Vec3 dx_t = dx - dot(dx, n) * n;
+    const double g = links.prestress[k] / norm(d);
+    out.geometric_force_on_j = -g * dx_t;
+    out.force_on_j += out.geometric_force_on_j;
+    out.energy += 0.5 * g * norm2(dx_t);
+  }
   return out;
 }
 
@@ -391,8 +429,10 @@ std::vector<double> StiffnessAssembly::load(std::span<const double> q, const Dis
       scratch[6 * pj + static_cast<std::size_t>(c)] = 0.0;
     }
     const Vec3 n = links_.branch[k] * (1.0 / norm(links_.branch[k]));
-    const Vec3 torque_j = -links_.branch_j[k] * cross(n, r.force_on_j) + r.moment_on_j;
-    const Vec3 torque_i = -links_.branch_i[k] * cross(n, r.force_on_j) - r.moment_on_j;
+    // The springs' force acts at the contact point; the pre-force's turn has no torque.
+    const Vec3 spring = links_.prestress.empty() ? r.force_on_j : r.force_on_j - r.geometric_force_on_j;
+    const Vec3 torque_j = -links_.branch_j[k] * cross(n, spring) + r.moment_on_j;
+    const Vec3 torque_i = -links_.branch_i[k] * cross(n, spring) - r.moment_on_j;
     if (a >= 0) {
       const Vec3 fi = -r.force_on_j;
       const double g[6] = {fi.x, fi.y, fi.z, torque_i.x, torque_i.y, torque_i.z};

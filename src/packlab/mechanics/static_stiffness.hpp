@@ -18,8 +18,21 @@
 // doh-elastic-properties eq. 1-2) for one small increment from a stress-free start. The link's
 // energy 1/2 du.D du + 1/2 dtheta.D_theta dtheta (D = k_n nn + k_s (1 - nn), D_theta likewise) gives
 // its 12 x 12 stiffness K = B^T D B + R^T D_theta R, assembled into a sparse symmetric matrix.
-// The forces the links carry before the increment are not included (no geometric stiffness):
-// the model is taken as relaxed, as the papers' networks are before loading.
+// By default the forces the links carry before the increment are not included (no geometric
+// stiffness): the model is taken as relaxed, as the papers' networks are before loading.
+// Optionally (linearize_links(..., prestress = true)) each link also carries its normal force in
+// the state linearized, N (tension positive), and its geometric (initial-stress) stiffness is
+// added: a force N along the line of centres whose direction n turns with the relative
+// displacement of the centres dx = u_j - u_i + H d gives the force on j -(N / L) (1 - nn) dx
+// (L = |d|), i.e. K_g = (N / L) [P -P; -P P] on the translations, P = 1 - nn: the geometric
+// (stress, initial-stress) stiffness matrix of a pre-loaded bar (truss) element, e.g. Cook,
+// Malkus, Plesha & Witt, "Concepts and Applications of Finite Element Analysis", 4th ed. (2002),
+// ch. 18 (stress stiffness of a bar). It is also the part -k_n overlap d^2|d|/dd^2 = N P / L of
+// the Hessian of the normal spring energy 1/2 k_n overlap^2 that the engine integrates. The force
+// stays on the line of centres, which the particles' rotations do not move, so there are no
+// rotational entries (no moment-arm terms: its torque about either centre stays zero). Shear
+// forces of the pre-stressed state are not included (the set-up the static tests linearize has
+// none: the shear histories are not part of a packing file).
 #pragma once
 
 #include <array>
@@ -46,6 +59,11 @@ struct StaticLinks {
   std::vector<dem::BondTangent> stiffness;     // contacts: torsion = bending = 0
   std::vector<int> bond;                       // index into packing.bonds, -1 for an unbonded contact
   std::vector<dem::ContactGeometry> geometry;  // bonds: what the bond law's failure_ratio reads
+  // Per link, the normal force N it carries in the state linearized [N] (tension positive: the
+  // engine's force on j is -N n), for the geometric stiffness (N / |branch|) (1 - nn) on the
+  // translations (see above). Empty (the default): no pre-stress term, the stiffness is that of
+  // the springs alone. May be scaled or edited after linearize_links.
+  std::vector<double> prestress;
   std::size_t size() const { return i.size(); }
   std::size_t bonds() const;
 };
@@ -53,15 +71,18 @@ struct StaticLinks {
 // Links of every intact bond and every touching unbonded pair of `packing` under `config`'s
 // contact and bond laws (the engine's neighbour search finds the touching pairs). InputError
 // when a law has no linearization (e.g. linear_adhesive) or the configuration is invalid.
-StaticLinks linearize_links(const Packing& packing, const dem::EngineConfig& config);
+// `prestress`: also fill StaticLinks::prestress with each link's normal force at the packing's
+// state as the engine computes it (its contact_forces(): no shear histories).
+StaticLinks linearize_links(const Packing& packing, const dem::EngineConfig& config, bool prestress = false);
 
 // What a link carries for particle displacements q (6 per particle) and an affine gradient H.
 struct LinkResponse {
-  Vec3 force_on_j;                   // [N] (the force on i is its negative)
+  Vec3 force_on_j;                   // [N] (the force on i is its negative), geometric part included
+  Vec3 geometric_force_on_j;         // the pre-stress's part of it, -(N / L) (1 - nn) dx (no torque) [N]
   Vec3 moment_on_j;                  // the bond's moment on j (on i: its negative) [N m]
   double normal_displacement = 0.0;  // du . n: > 0 the pair moves apart [m]
-  double energy = 0.0;               // elastic energy of the increment [J]
-  dem::BondLoad load;                // as the breakage criteria read it
+  double energy = 0.0;               // elastic energy of the increment [J] (with the geometric term)
+  dem::BondLoad load;                // as the breakage criteria read it (the springs' increment)
 };
 LinkResponse link_response(const StaticLinks& links, std::size_t k, std::span<const double> q,
                            const DisplacementGradient& gradient);
