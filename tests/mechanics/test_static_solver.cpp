@@ -515,6 +515,32 @@ TEST(StaticSolver, EnergyCheckOfADowndatedFactorEqualsThatOfAFreshFactorization)
   }
 }
 
+// An unbonded contact enters the linearization sticking (its shear spring below the Coulomb
+// limit), except without friction, where the engine's contact carries no shear force: two
+// overlapping spheres, each contact law, friction 0 and 0.3.
+TEST(StaticSolver, AFrictionlessContactHasNoShearStiffness) {
+  Packing p;
+  p.box.length = {1e-5, 1e-5, 1e-5};
+  p.box.periodic = {false, false, false};
+  p.add({4e-6, 5e-6, 5e-6}, r0, 0);
+  p.add({4e-6 + 2 * r0 * (1 - 1e-3), 5e-6, 5e-6}, r0, 0);
+  for (const std::string law : {"linear", "hertz_mindlin"})
+    for (const double friction : {0.0, 0.3}) {
+      SCOPED_TRACE(law + " friction " + std::to_string(friction));
+      dem::EngineConfig c;
+      c.contact_law = law;
+      c.types = {dem::Material{
+          .normal_stiffness = 100.0, .shear_stiffness = 10.0, .friction = friction, .youngs_modulus = 1e9}};
+      const StaticLinks links = linearize_links(p, c);
+      ASSERT_EQ(links.size(), 1u);
+      EXPECT_GT(links.stiffness[0].normal, 0.0);
+      if (friction > 0.0)
+        EXPECT_GT(links.stiffness[0].shear, 0.05 * links.stiffness[0].normal);
+      else
+        EXPECT_EQ(links.stiffness[0].shear, 0.0);
+    }
+}
+
 TEST(StaticSolver, BadInputIsAnInputError) {
   const Packing column = test::bonded_lattice(generate::LatticeType::sc, {3, 3, 4}, r, 1.01);
   UniaxialCompressionOptions o = compression_options("static");

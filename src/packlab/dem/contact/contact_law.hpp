@@ -67,7 +67,8 @@ struct PairForce {
 };
 
 // A contact law linearized about the current overlap (sticking, no slip): dF_n = -normal du_n,
-// dF_t = -shear du_t for the relative displacement du of the contact points.
+// dF_t = -shear du_t for the relative displacement du of the contact points; shear = 0 without
+// friction (the Coulomb limit mu F_n is zero: no tangential force).
 struct PairTangent {
   double normal = 0.0;  // [N/m]
   double shear = 0.0;   // [N/m]

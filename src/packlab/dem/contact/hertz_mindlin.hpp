@@ -48,11 +48,13 @@ struct HertzMindlin {
     return 2.0 * p.effective_youngs_modulus * std::sqrt(r_eff * 0.01 * radius);
   }
 
-  // S_n and S_t at the current overlap (the tangent of F_n = 4/3 E* sqrt(R*) delta^3/2).
+  // S_n and S_t at the current overlap (the tangent of F_n = 4/3 E* sqrt(R*) delta^3/2; the
+  // tangential spring sticking below the Coulomb limit, and zero without friction, where the
+  // contact carries no tangential force at all).
   static PairTangent tangent(const ContactGeometry& g, const Params& p) {
     const double r_eff = g.radius_i * g.radius_j / (g.radius_i + g.radius_j);
     const double root = std::sqrt(r_eff * std::max(0.0, g.overlap));
-    return {2.0 * p.effective_youngs_modulus * root, 8.0 * p.effective_shear_modulus * root};
+    return {2.0 * p.effective_youngs_modulus * root, p.friction > 0.0 ? 8.0 * p.effective_shear_modulus * root : 0.0};
   }
 
   static PairForce evaluate(const ContactGeometry& g, const Params& p, History& tangential_overlap) {

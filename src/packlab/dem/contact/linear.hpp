@@ -26,8 +26,11 @@ struct LinearContact {
     return std::max(p.normal_stiffness, p.shear_stiffness);
   }
 
+  // The shear spring sticks below friction x F_n (eq. 2 and the Coulomb slip below): the tangent
+  // of a contact about its unslipped state, except without friction, where the limit is zero and
+  // the contact carries no shear force at all.
   static PairTangent tangent(const ContactGeometry& /*g*/, const Params& p) {
-    return {p.normal_stiffness, p.shear_stiffness};
+    return {p.normal_stiffness, p.friction > 0.0 ? p.shear_stiffness : 0.0};
   }
 
   static PairForce evaluate(const ContactGeometry& g, const Params& p, History& shear_force) {
