@@ -74,9 +74,6 @@
 #include "packlab/mechanics/static_solver_petsc.hpp"
 #endif
 #include "shear_case.hpp"
-#ifdef PACKLAB_HAVE_CHOLMOD
-#include <cholmod.h>
-#endif
 
 using namespace packlab;
 using namespace packlab::bench;
@@ -617,11 +614,8 @@ int petsc(int argc, char** argv) {
 
 }  // namespace
 
-#ifdef PACKLAB_HAVE_CHOLMOD
-// The fill of CHOLMOD's orderings on the compression set-up of a model (docs/static-solver.md,
-// why the whole SLA curve takes what it takes): AMD, METIS and CHOLMOD's nested dissection on
-// the matrix, CHOLMOD's own choice, and METIS / nested dissection on the particle graph (one
-// node per particle, expanded to its six unknowns).
+// The fill of CHOLMOD's orderings on the compression set-up of a model (mechanics::ordering_fill,
+// docs/static-solver.md).
 int orderings(int argc, char** argv) {
   const Packing model = opal_case(argc > 2 ? argv[2] : "-", 4, 1);
   mechanics::UniaxialCompressionSetup setup;
@@ -636,73 +630,17 @@ int orderings(int argc, char** argv) {
   const mechanics::StaticLinks links = mechanics::linearize_links(specimen.model, config);
   mechanics::StiffnessAssembly a(links, specimen.model.fixed);
   a.assemble({}, 1e-12);
-  cholmod_common c;
-  cholmod_start(&c);
-  c.print = 0;
-  cholmod_sparse A{};
-  A.nrow = A.ncol = a.unknowns();
-  A.nzmax = a.values().size();
-  A.p = const_cast<int*>(a.column_start().data());
-  A.i = const_cast<int*>(a.row().data());
-  A.x = const_cast<double*>(a.values().data());
-  A.stype = -1;
-  A.itype = CHOLMOD_INT;
-  A.xtype = CHOLMOD_REAL;
-  A.dtype = CHOLMOD_DOUBLE;
-  A.sorted = A.packed = 1;
-  fmt::print("unknowns {}, matrix nonzeros {} (lower)\n", A.nrow, A.nzmax);
-  auto analyze = [&](const char* name, const int* perm) {
-    const auto t0 = std::chrono::steady_clock::now();
-    cholmod_factor* L = perm ? cholmod_analyze_p(&A, const_cast<int*>(perm), nullptr, 0, &c) : cholmod_analyze(&A, &c);
-    fmt::print("{:<28} factor nonzeros {:.4g}, flops {:.4g}, {:.2f} s\n", name, c.lnz, c.fl, since(t0));
-    cholmod_free_factor(&L, &c);
-  };
-  const std::pair<int, const char*> methods[] = {
-      {CHOLMOD_AMD, "AMD"}, {CHOLMOD_METIS, "METIS"}, {CHOLMOD_NESDIS, "NESDIS (CHOLMOD)"}};
-  for (const auto& [method, name] : methods) {
-    c.nmethods = 1;
-    c.method[0].ordering = method;
-    analyze(name, nullptr);
+  fmt::print("unknowns {}, matrix nonzeros {} (lower)\n", a.unknowns(), a.values().size());
+  const std::vector<mechanics::OrderingFill> fills = mechanics::ordering_fill(a);
+  if (fills.empty()) {
+    fmt::print(stderr, "bench_static orderings: this build has no CHOLMOD\n");
+    return 2;
   }
-  c.nmethods = 0;  // CHOLMOD's default choice (the solver's)
-  analyze("default", nullptr);
-  fmt::print("  default chose {}\n", c.method[c.selected].ordering == CHOLMOD_METIS ? "METIS" : "another");
-  // The particle graph: the pattern of the 6 x 6 blocks.
-  const std::size_t particles = A.nrow / 6;
-  std::vector<int> start(particles + 1, 0), index;
-  for (std::size_t p = 0; p < particles; ++p) {
-    int last = -1;
-    for (int k = a.column_start()[6 * p]; k < a.column_start()[6 * p + 1]; ++k)
-      if (a.row()[static_cast<std::size_t>(k)] / 6 != last)
-        index.push_back(last = a.row()[static_cast<std::size_t>(k)] / 6);
-    start[p + 1] = static_cast<int>(index.size());
-  }
-  cholmod_sparse G{};
-  G.nrow = G.ncol = particles;
-  G.nzmax = index.size();
-  G.p = start.data();
-  G.i = index.data();
-  G.stype = -1;
-  G.itype = CHOLMOD_INT;
-  G.xtype = CHOLMOD_PATTERN;
-  G.dtype = CHOLMOD_DOUBLE;
-  G.sorted = G.packed = 1;
-  for (const bool nesdis : {false, true}) {
-    std::vector<int> perm(particles), cparent(particles), cmember(particles), full(A.nrow);
-    if (nesdis)
-      cholmod_nested_dissection(&G, nullptr, 0, perm.data(), cparent.data(), cmember.data(), &c);
-    else
-      cholmod_metis(&G, nullptr, 0, 1, perm.data(), &c);
-    for (std::size_t p = 0; p < particles; ++p)
-      for (int d = 0; d < 6; ++d) full[6 * p + static_cast<std::size_t>(d)] = 6 * perm[p] + d;
-    c.nmethods = 1;
-    c.method[0].ordering = CHOLMOD_GIVEN;
-    analyze(nesdis ? "NESDIS on the particle graph" : "METIS on the particle graph", full.data());
-  }
-  cholmod_finish(&c);
+  for (const mechanics::OrderingFill& f : fills)
+    fmt::print("{:<28} factor nonzeros {:.4g}, flops {:.4g}, {:.2f} s\n", f.name, f.factor_nonzeros, f.flops,
+               f.seconds);
   return 0;
 }
-#endif
 
 int main(int argc, char** argv) {
   ensure_passive_thread_wait(argv);  // as the packlab program does (core/thread_wait.hpp)
@@ -720,9 +658,7 @@ int main(int argc, char** argv) {
 #endif
   if (what == "shear") return shear(argc, argv);
   if (what == "prestress") return prestress(argc, argv);
-#ifdef PACKLAB_HAVE_CHOLMOD
   if (what == "orderings") return orderings(argc, argv);
-#endif
   if (what == "compare") return compare(argc, argv);
   return compress(argc, argv);
 }

@@ -5,6 +5,7 @@
 // re-solve after bonds break, and bad input.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <numbers>
@@ -363,6 +364,40 @@ LinearizedSample linearized_sample(unsigned seed) {
   for (std::size_t k = 0; k < out.specimen.model.size(); ++k)
     if (out.specimen.grip[k]) out.q0[6 * k + 2] = -1e-3 * info.height;
   return out;
+}
+
+// bench_static orderings (docs/static-solver.md): every ordering's factor holds at least the
+// matrix's own lower triangle and at most a dense one, and CHOLMOD's default is one of those it
+// tried, with that one's fill.
+TEST(StaticSolver, OrderingFillNamesEachOrderingAndTheDefaultsChoice) {
+  const LinearizedSample sample = linearized_sample(5);
+  StiffnessAssembly a(sample.links, sample.specimen.model.fixed);
+  a.assemble({}, 1e-12);
+  const std::vector<OrderingFill> fills = ordering_fill(a);
+  const std::vector<std::string> backends = static_solver_backends();
+  if (std::find(backends.begin(), backends.end(), "cholmod") == backends.end()) {
+    EXPECT_TRUE(fills.empty());
+    GTEST_SKIP() << "built without CHOLMOD";
+  }
+  ASSERT_EQ(fills.size(), 6u);
+  const double n = static_cast<double>(a.unknowns());
+  for (const OrderingFill& f : fills) {
+    EXPECT_GE(f.factor_nonzeros, static_cast<double>(a.values().size())) << f.name;
+    EXPECT_LE(f.factor_nonzeros, n * (n + 1) / 2) << f.name;
+    EXPECT_GT(f.flops, 0.0) << f.name;
+  }
+  EXPECT_EQ(fills[0].name, "AMD");
+  EXPECT_EQ(fills[1].name, "METIS");
+  EXPECT_EQ(fills[2].name, "NESDIS (CHOLMOD)");
+  EXPECT_EQ(fills[4].name, "METIS on the particle graph");
+  EXPECT_EQ(fills[5].name, "NESDIS on the particle graph");
+  const std::string& chosen = fills[3].name;
+  ASSERT_TRUE(chosen.starts_with("default (") && chosen.ends_with(")")) << chosen;
+  const std::string inner = chosen.substr(9, chosen.size() - 10);
+  const auto same =
+      std::find_if(fills.begin(), fills.begin() + 3, [&](const OrderingFill& f) { return f.name == inner; });
+  ASSERT_NE(same, fills.begin() + 3) << chosen;
+  EXPECT_EQ(fills[3].factor_nonzeros, same->factor_nonzeros);
 }
 
 // Links switched off after the factorization: the downdated factor (CHOLMOD) and the

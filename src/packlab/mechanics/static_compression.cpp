@@ -218,12 +218,12 @@ UniaxialCompressionResult run_static_uniaxial_compression(const Packing& bonded_
         if (failure_ratio[k] >= ratio * (1.0 - 1e-12)) critical.push_back(k);
     const double break_strain = ratio > 0.0 ? 1.0 / ratio : std::numeric_limits<double>::infinity();
     const double energy1 = scan.energy;
-    // The run ends here: its last solve must be verified before it counts.
-    const bool last =
-        break_strain > options.max_strain ||
-        (options.max_breaks > 0 && static_cast<long>(result.breaks.size() + critical.size()) >= options.max_breaks) ||
-        intact_bonds == critical.size();
-    if (last && !solver.check_last()) {
+    // The three ends of the run, decided here once; its last solve must be verified before it counts.
+    const bool past_max_strain = break_strain > options.max_strain;
+    const bool reaches_max_breaks =
+        options.max_breaks > 0 && static_cast<long>(result.breaks.size() + critical.size()) >= options.max_breaks;
+    const bool breaks_every_bond = intact_bonds == critical.size();
+    if ((past_max_strain || reaches_max_breaks || breaks_every_bond) && !solver.check_last()) {
       roll_back();
       continue;
     }
@@ -231,7 +231,7 @@ UniaxialCompressionResult run_static_uniaxial_compression(const Packing& bonded_
       snapshot(pending[next_snapshot], pending[next_snapshot], pending[next_snapshot] * stress1);
       ++next_snapshot;
     }
-    if (break_strain > options.max_strain) {
+    if (past_max_strain) {
       add_point(options.max_strain, stress1, energy1);
       peak = std::max(peak, options.max_strain * stress1);
       if (peak == options.max_strain * stress1) result.strain_at_peak = options.max_strain;
@@ -253,12 +253,12 @@ UniaxialCompressionResult run_static_uniaxial_compression(const Packing& bonded_
       broken_links.push_back(k);
     }
     result.curve.back().broken_bonds = result.breaks.size();
-    if (options.max_breaks > 0 && static_cast<long>(result.breaks.size()) >= options.max_breaks) {
+    if (reaches_max_breaks) {
       result.stop_reason = fmt::format("{} bonds broke (max_breaks)", result.breaks.size());
       break;
     }
     intact_bonds -= critical.size();
-    if (intact_bonds == 0) {
+    if (breaks_every_bond) {
       result.stop_reason = "every bond broke";
       break;
     }

@@ -54,6 +54,26 @@ void symmetric_multiply(const StiffnessAssembly& a, const std::vector<double>& x
   }
 }
 
+#ifdef PACKLAB_HAVE_CHOLMOD
+// CHOLMOD's view of the assembled matrix (no copy): symmetric, its lower triangle in sorted
+// compressed columns.
+cholmod_sparse cholmod_view(const StiffnessAssembly& a) {
+  cholmod_sparse A{};
+  A.nrow = A.ncol = a.unknowns();
+  A.nzmax = a.values().size();
+  A.p = const_cast<int*>(a.column_start().data());
+  A.i = const_cast<int*>(a.row().data());
+  A.x = const_cast<double*>(a.values().data());
+  A.stype = -1;
+  A.itype = CHOLMOD_INT;
+  A.xtype = CHOLMOD_REAL;
+  A.dtype = CHOLMOD_DOUBLE;
+  A.sorted = 1;
+  A.packed = 1;
+  return A;
+}
+#endif
+
 }  // namespace
 
 std::vector<std::string> static_solver_backends() {
@@ -127,18 +147,7 @@ struct CholmodCholesky final : StaticSolver::Factor {
     common.supernodal = CHOLMOD_SUPERNODAL;
     common.print = 0;
     common.error_handler = nullptr;
-    cholmod_sparse A{};
-    A.nrow = A.ncol = a.unknowns();
-    A.nzmax = a.values().size();
-    A.p = const_cast<int*>(a.column_start().data());
-    A.i = const_cast<int*>(a.row().data());
-    A.x = const_cast<double*>(a.values().data());
-    A.stype = -1;  // symmetric, lower triangle stored
-    A.itype = CHOLMOD_INT;
-    A.xtype = CHOLMOD_REAL;
-    A.dtype = CHOLMOD_DOUBLE;
-    A.sorted = 1;
-    A.packed = 1;
+    cholmod_sparse A = cholmod_view(a);
     factor = cholmod_analyze(&A, &common);
     if (!factor || common.status < CHOLMOD_OK) fail("analysis");
     if (!cholmod_factorize(&A, factor, &common) || common.status != CHOLMOD_OK) {
@@ -500,15 +509,9 @@ void StaticSolver::solve(std::span<double> q, const DisplacementGradient& gradie
       const bool check = !factor_->exact() || options_.check_interval <= 1 || strict_solves_ > 0 ||
                          unverified_solves_ + 1 >= options_.check_interval;
       if (check) {
-        const auto t1 = std::chrono::steady_clock::now();
-        const int iterations = refine(f, x);
-        solved = iterations >= 0;
-        // Refinement after unchecked solves: the factor drifted somewhere since the last check.
-        drifted_ = iterations != 0 && unverified_solves_ > 0;
+        solved = this->check(f, x) >= 0;
         if (strict_solves_ > 0) --strict_solves_;
         verified_ = true;
-        ++stats_.checks;
-        stats_.check_seconds += seconds_since(t1);
       } else {
         ++stats_.unchecked_solves;
       }
@@ -537,18 +540,26 @@ void StaticSolver::solve(std::span<double> q, const DisplacementGradient& gradie
   stats_.solve_seconds += seconds_since(t0);
 }
 
+int StaticSolver::check(const std::vector<double>& f, std::vector<double>& x) {
+  const auto t0 = std::chrono::steady_clock::now();
+  const int iterations = refine(f, x);
+  // Refinement after unchecked solves: the factor drifted somewhere since the last check.
+  drifted_ = iterations != 0 && unverified_solves_ > 0;
+  ++stats_.checks;
+  stats_.check_seconds += seconds_since(t0);
+  return iterations;
+}
+
 bool StaticSolver::check_last() {
-  if (verified_ || !factor_) return true;
+  // Nothing unverified: the last solve was checked, or none was made since restore().
+  if (verified_ || unverified_solves_ == 0 || !factor_) return true;
   const auto t0 = std::chrono::steady_clock::now();
   const int saved_threads = omp_get_max_threads();
   omp_set_num_threads(std::max(1, options_.threads));
   std::vector<double> x = last_solution_;
-  const int iterations = refine(last_load_, x);
+  check(last_load_, x);
   omp_set_num_threads(saved_threads);
-  ++stats_.checks;
-  stats_.check_seconds += seconds_since(t0);
   stats_.solve_seconds += seconds_since(t0);
-  drifted_ = iterations != 0;
   if (drifted_) {
     strict_solves_ = unverified_solves_ + 1;
     return false;
@@ -569,6 +580,77 @@ void StaticSolver::restore(std::span<const std::size_t> reactivated) {
   verified_ = false;
   unverified_solves_ = 0;
   ++stats_.rollbacks;
+}
+
+// bench_static orderings: see the header.
+std::vector<OrderingFill> ordering_fill(const StiffnessAssembly& assembly) {
+  std::vector<OrderingFill> out;
+#ifdef PACKLAB_HAVE_CHOLMOD
+  cholmod_common c;
+  cholmod_start(&c);
+  struct Finish {
+    cholmod_common* c;
+    ~Finish() { cholmod_finish(c); }
+  } finish{&c};
+  c.print = 0;
+  c.error_handler = nullptr;
+  cholmod_sparse A = cholmod_view(assembly);
+  const auto analyze = [&](std::string name, const int* perm) {
+    const auto t0 = std::chrono::steady_clock::now();
+    cholmod_factor* L = perm ? cholmod_analyze_p(&A, const_cast<int*>(perm), nullptr, 0, &c) : cholmod_analyze(&A, &c);
+    if (!L) throw std::runtime_error(fmt::format("ordering_fill: CHOLMOD's analysis with {} failed", name));
+    out.push_back({std::move(name), c.lnz, c.fl, seconds_since(t0)});
+    cholmod_free_factor(&L, &c);
+  };
+  const std::pair<int, const char*> methods[] = {
+      {CHOLMOD_AMD, "AMD"}, {CHOLMOD_METIS, "METIS"}, {CHOLMOD_NESDIS, "NESDIS (CHOLMOD)"}};
+  for (const auto& [method, name] : methods) {
+    c.nmethods = 1;
+    c.method[0].ordering = method;
+    analyze(name, nullptr);
+  }
+  c.nmethods = 0;  // CHOLMOD's default choice (the solver's)
+  analyze("default", nullptr);
+  const int chosen = c.method[c.selected].ordering;
+  for (const auto& [method, name] : methods)
+    if (method == chosen) out.back().name = fmt::format("default ({})", name);
+  // The particle graph: the pattern of the 6 x 6 blocks, one node per particle.
+  const std::size_t particles = assembly.unknowns() / 6;
+  std::vector<int> start(particles + 1, 0), index;
+  for (std::size_t p = 0; p < particles; ++p) {
+    int last = -1;
+    for (int k = assembly.column_start()[6 * p]; k < assembly.column_start()[6 * p + 1]; ++k)
+      if (assembly.row()[static_cast<std::size_t>(k)] / 6 != last)
+        index.push_back(last = assembly.row()[static_cast<std::size_t>(k)] / 6);
+    start[p + 1] = static_cast<int>(index.size());
+  }
+  cholmod_sparse G{};
+  G.nrow = G.ncol = particles;
+  G.nzmax = index.size();
+  G.p = start.data();
+  G.i = index.data();
+  G.stype = -1;
+  G.itype = CHOLMOD_INT;
+  G.xtype = CHOLMOD_PATTERN;
+  G.dtype = CHOLMOD_DOUBLE;
+  G.sorted = G.packed = 1;
+  for (const bool nesdis : {false, true}) {
+    std::vector<int> perm(particles), cparent(particles), cmember(particles), full(assembly.unknowns());
+    if (nesdis)
+      cholmod_nested_dissection(&G, nullptr, 0, perm.data(), cparent.data(), cmember.data(), &c);
+    else
+      cholmod_metis(&G, nullptr, 0, 1, perm.data(), &c);
+    // Each particle's six unknowns stay together, in the particle's place.
+    for (std::size_t p = 0; p < particles; ++p)
+      for (int d = 0; d < 6; ++d) full[6 * p + static_cast<std::size_t>(d)] = 6 * perm[p] + d;
+    c.nmethods = 1;
+    c.method[0].ordering = CHOLMOD_GIVEN;
+    analyze(nesdis ? "NESDIS on the particle graph" : "METIS on the particle graph", full.data());
+  }
+#else
+  (void)assembly;
+#endif
+  return out;
 }
 
 }  // namespace packlab::mechanics

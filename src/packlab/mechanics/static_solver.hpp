@@ -48,6 +48,16 @@ struct StaticSolverOptions {
   std::string petsc_options;  // PETSc: options database entries, e.g. "-ksp_type cg -pc_type gamg"
 };
 
+// The fill of CHOLMOD's orderings on an assembled matrix (docs/static-solver.md, why the whole
+// SLA curve of the 54k opal takes what it takes): AMD, METIS and CHOLMOD's nested dissection on
+// the matrix, CHOLMOD's own choice (the solver's), and METIS / nested dissection on the particle
+// graph (one node per particle, expanded to its six unknowns). Empty in a build without CHOLMOD.
+struct OrderingFill {
+  std::string name;
+  double factor_nonzeros = 0.0, flops = 0.0, seconds = 0.0;
+};
+std::vector<OrderingFill> ordering_fill(const StiffnessAssembly& assembly);
+
 // The backends this build has ("cholmod", "eigen", "petsc"; "petsc": static_solver_petsc.hpp).
 std::vector<std::string> static_solver_backends();
 
@@ -111,6 +121,9 @@ class StaticSolver {
   // forward solution over to the new load f.
   void downdate_pending(const std::vector<double>& f);
   int refine(const std::vector<double>& f, std::vector<double>& x);
+  // Checks x against the matrix of the active links and refines it (refine(): its iterations, -1
+  // when it failed); sets drifted() when it refined after unchecked solves.
+  int check(const std::vector<double>& f, std::vector<double>& x);
   const StaticLinks& links_;
   StaticSolverOptions options_;
   std::vector<std::uint8_t> active_;
