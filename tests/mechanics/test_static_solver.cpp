@@ -576,6 +576,43 @@ TEST(StaticSolver, AFrictionlessContactHasNoShearStiffness) {
     }
 }
 
+// A frictionless contact in a direction off the axes: its rotation entries are exactly zero,
+// not the rounding of k_n b^2 (n x theta) . n, which the diagonal shift would take for a
+// stiffness (an N = 8000 BD gel failed as not positive definite), and the particle it touches
+// alone gets a positive definite matrix from the shift.
+TEST(StaticSolver, AFrictionlessContactLeavesNoRoundingOnTheRotations) {
+  Packing p;
+  p.box.length = {1e-5, 1e-5, 1e-5};
+  p.box.periodic = {false, false, false};
+  const Vec3 n = Vec3{0.37, -0.61, 0.70} * (1.0 / norm(Vec3{0.37, -0.61, 0.70}));
+  p.add({5e-6, 5e-6, 5e-6}, r0, 0);
+  p.add(Vec3{5e-6, 5e-6, 5e-6} + (2 * r0 * (1 - 1e-3)) * n, r0, 0);
+  dem::EngineConfig c;
+  c.contact_law = "linear";
+  c.types = {dem::Material{.normal_stiffness = 100.0, .shear_stiffness = 10.0, .friction = 0.0}};
+  const StaticLinks links = linearize_links(p, c);
+  ASSERT_EQ(links.size(), 1u);
+  const auto blocks = link_stiffness(links, 0);
+  for (const auto& K : blocks)
+    for (int r = 0; r < 6; ++r)
+      for (int col = 0; col < 6; ++col)
+        if (r >= 3 || col >= 3) {
+          EXPECT_EQ(K[static_cast<std::size_t>(6 * r + col)], 0.0) << r << "," << col;
+        }
+  EXPECT_GT(blocks[0][0], 0.0);
+  // Particle 0 held by the contact alone (particle 1 prescribed): the shift makes its rotations
+  // positive definite, and the factorization succeeds.
+  const std::vector<std::uint8_t> prescribed = {0, 1};
+  StaticSolver solver(links, prescribed, StaticSolverOptions{});
+  std::vector<double> q(12, 0.0);
+  q[6] = 1e-9;
+  ASSERT_NO_THROW(solver.solve(q, DisplacementGradient{}));
+  // Particle 0 follows along n (the contact carries no force) and does not turn.
+  EXPECT_NEAR(link_response(links, 0, q, DisplacementGradient{}).normal_displacement, 0.0, 1e-9 * 1e-9);
+  EXPECT_NEAR(dot(Vec3{q[0], q[1], q[2]}, n), 1e-9 * n.x, 1e-9 * 1e-9);
+  for (std::size_t u = 3; u < 6; ++u) EXPECT_LT(std::abs(q[u]) * r0, 1e-9 * 1e-9);
+}
+
 TEST(StaticSolver, BadInputIsAnInputError) {
   const Packing column = test::bonded_lattice(generate::LatticeType::sc, {3, 3, 4}, r, 1.01);
   UniaxialCompressionOptions o = compression_options("static");

@@ -165,18 +165,30 @@ std::array<std::array<double, 36>, 4> link_stiffness(const StaticLinks& links, s
   for (int ea = 0; ea < 2; ++ea)
     for (int eb = 0; eb < 2; ++eb) {
       auto& K = out[static_cast<std::size_t>(2 * ea + eb)];
-      // B_a^T D B_b
+      // B_a^T D B_b. The rotation columns of B (b N) are normal to n, so D maps them to
+      // k_s b N exactly: written so, not summed, because the sum leaves rounding of k_n b^2
+      // eps where k_s is zero (a frictionless contact), rotation entries of ~1e-12 of the
+      // others that the diagonal shift (assemble()) took for real ones; an N = 8000 BD gel
+      // with a particle touched only by such contacts failed as not positive definite.
       double DB[18];
       for (int a = 0; a < 3; ++a)
         for (int c = 0; c < 6; ++c) {
           double v = 0.0;
-          for (int m = 0; m < 3; ++m) v += D[3 * a + m] * B[eb][6 * m + c];
+          if (c < 3)
+            for (int m = 0; m < 3; ++m) v += D[3 * a + m] * B[eb][6 * m + c];
+          else
+            v = s.shear * B[eb][6 * a + c];
           DB[6 * a + c] = v;
         }
       for (int r = 0; r < 6; ++r)
         for (int c = 0; c < 6; ++c) {
           double v = 0.0;
-          for (int m = 0; m < 3; ++m) v += B[ea][6 * m + r] * DB[6 * m + c];
+          if (r < 3) {
+            for (int m = 0; m < 3; ++m) v += B[ea][6 * m + r] * DB[6 * m + c];
+          } else {  // the rotation rows: (b N)^T D = k_s (b N)^T likewise
+            for (int m = 0; m < 3; ++m) v += B[ea][6 * m + r] * B[eb][6 * m + c];
+            v *= s.shear;
+          }
           K[static_cast<std::size_t>(6 * r + c)] = v;
         }
       // R_a^T D_theta R_b on the rotation block.
@@ -389,7 +401,10 @@ void StiffnessAssembly::assemble(std::span<const std::uint8_t> active, double re
   for (std::size_t col = 0; col < unknowns(); ++col)
     sum[col % 6 < 3 ? 0 : 1] += values_[static_cast<std::size_t>(column_start_[col])];
   const double per_kind = unknowns() > 0 ? static_cast<double>(unknowns() / 2) : 1.0;
-  const double mean[2] = {sum[0] / per_kind, sum[1] / per_kind};
+  // A kind with no stiffness at all (rotations in a network of frictionless contacts only):
+  // its entries are zero, and so are their rows (K is positive semi-definite), so any shift
+  // makes them positive definite without touching the solution.
+  const double mean[2] = {sum[0] > 0.0 ? sum[0] / per_kind : 1.0, sum[1] > 0.0 ? sum[1] / per_kind : 1.0};
   if (regularization > 0.0)
     for (std::size_t col = 0; col < unknowns(); ++col) {
       double& diagonal = values_[static_cast<std::size_t>(column_start_[col])];
