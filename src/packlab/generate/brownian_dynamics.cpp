@@ -17,10 +17,15 @@ namespace packlab::generate {
 
 namespace {
 
-// Neighbour-list skin [a]. The list only decides which pairs are examined: every pair within
-// the cut-off is listed until a sphere moved by half the skin (NeighborList::needs_rebuild),
-// so the skin changes the cost, not the physics.
-constexpr double list_skin = 0.1;
+// Neighbour-list skin [a]. The list only decides which pairs are examined: a pair unlisted at
+// the build was at least 2a + cutoff + skin apart, and the list is rebuilt before two spheres
+// can have closed that gap by the skin (2 max displacement >= skin, NeighborList::needs_rebuild),
+// so every pair within the cut-off is listed at any skin. A larger skin lists more pairs beyond
+// the cut-off and rebuilds less often: 0.3 a (rebuilt about every 60 steps at the default step,
+// 0.1 a every ~8) was the fastest of 0.1 ... 0.5 a (docs/bd.md). A different skin changes the
+// result only by rounding (positions are wrapped into the box at other steps). A checkpoint
+// keeps the skin its list was built with.
+constexpr double list_skin = 0.3;
 
 // Spheres per chunk of the pair loop (dynamic schedule: the thread that draws the normals
 // takes fewer); a pair's force goes to its own slot, so the chunking changes no result.
