@@ -169,8 +169,10 @@ void BdRun::setup() {
   bonds_.reserve(bond_room);
   bond_force_.reserve(bond_room);
   new_bonds_.reserve(bond_room);
-  thread_new_bonds_.assign(static_cast<std::size_t>(std::max(1, params_.threads)), {});
-  for (auto& found : thread_new_bonds_) found.reserve(bond_room);
+  // The threads share that room (a thread finding more in one step grows its buffer once).
+  const std::size_t threads = static_cast<std::size_t>(std::max(1, params_.threads));
+  thread_new_bonds_.assign(threads, {});
+  for (auto& found : thread_new_bonds_) found.reserve(bond_room / threads + 1);
   sphere_bonds_.assign(static_cast<std::size_t>(n), {});
   parent_.resize(static_cast<std::size_t>(n));
   size_.resize(static_cast<std::size_t>(n));
