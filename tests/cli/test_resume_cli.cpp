@@ -37,18 +37,21 @@ packlab::test::CliResult kill_and_resume(const std::string& args, const std::str
   return run_packlab(resume + " --resume " + dir + " --quiet --no-plots");
 }
 
+// `resume_args` go to the resumed runs only (e.g. another --threads: the result must not change).
 void expect_resumed_run_equals_straight_run(const std::string& command, const std::string& args, const TempDir& dir,
-                                            const std::string& input = "") {
+                                            const std::string& input = "", const std::string& resume_args = "") {
   const auto straight =
       run_packlab(command + " " + input + " " + args + " --quiet --no-plots --out " + dir.file("straight"));
   ASSERT_EQ(straight.exit_code, 0) << straight.output;
-  const auto resumed = kill_and_resume(command + " " + input + " " + args, dir.file("killed"), command);
+  const auto resumed =
+      kill_and_resume(command + " " + input + " " + args, dir.file("killed"), command + " " + resume_args);
   ASSERT_EQ(resumed.exit_code, 0) << resumed.output;
   const std::string expected = read_bytes(dir.path() / "straight" / "packing.xyz");
   ASSERT_FALSE(expected.empty());
   EXPECT_EQ(read_bytes(dir.path() / "killed" / "packing.xyz"), expected) << command;
   // Resuming a finished run writes the same outputs again.
-  const auto again = run_packlab(command + " --resume " + dir.file("killed") + " --quiet --no-plots");
+  const auto again =
+      run_packlab(command + " " + resume_args + " --resume " + dir.file("killed") + " --quiet --no-plots");
   ASSERT_EQ(again.exit_code, 0) << again.output;
   EXPECT_EQ(read_bytes(dir.path() / "killed" / "packing.xyz"), expected) << command;
 }
@@ -64,7 +67,8 @@ TEST(ResumeCli, GenerateFbaKilledAndResumedEqualsUninterruptedRun) {
 TEST(ResumeCli, GenerateBdKilledAndResumedEqualsUninterruptedRun) {
   TempDir dir("resume-bd");
   expect_resumed_run_equals_straight_run(
-      "generate bd", "--particles 200 --surface-potential 15e-3 --duration 0.05 --samples 20 --msd --seed 3", dir);
+      "generate bd", "--particles 200 --surface-potential 15e-3 --duration 0.05 --samples 20 --msd --seed 3", dir, "",
+      "--threads 2");  // straight on 1 thread, resumed on 2
 }
 
 TEST(ResumeCli, GenerateLsKilledAndResumedEqualsUninterruptedRun) {

@@ -2,13 +2,16 @@
 // the paper: free spheres diffuse with the Stokes-Einstein coefficient (MSD = 6 D_0 t, 2 D_0 t per
 // axis), the Debye length of a 1:1 electrolyte, a suspension without a barrier coagulates while
 // one behind a 60 kT barrier stays dispersed, bonds are stiff and never overlap, a checkpointed
-// run continues bit for bit, the neighbour-list thread count changes nothing, and bad input is
-// one message naming the key.
+// run continues bit for bit, the thread count changes nothing (one thread runs the serial loop,
+// several the per-pair slots: two code paths, one result), and bad input is one message naming
+// the key.
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <numbers>
 #include <sstream>
+#include <string>
 
 #include "../input_error.hpp"
 #include "packlab/generate/brownian_dynamics.hpp"
@@ -26,6 +29,18 @@ BdParams dense(double psi) {
   p.duration = 0.02;
   p.samples = 10;
   return p;
+}
+
+void expect_same_bits(const BdResult& r, const BdResult& expected, const std::string& what) {
+  ASSERT_EQ(r.packing.size(), expected.packing.size()) << what;
+  for (std::size_t i = 0; i < r.packing.size(); ++i) {
+    EXPECT_EQ(r.packing.position[i].x, expected.packing.position[i].x) << what << " sphere " << i;
+    EXPECT_EQ(r.packing.position[i].y, expected.packing.position[i].y) << what << " sphere " << i;
+    EXPECT_EQ(r.packing.position[i].z, expected.packing.position[i].z) << what << " sphere " << i;
+  }
+  EXPECT_EQ(r.packing.bonds.i, expected.packing.bonds.i) << what;
+  EXPECT_EQ(r.packing.bonds.j, expected.packing.bonds.j) << what;
+  EXPECT_EQ(r.status.step, expected.status.step) << what;
 }
 
 }  // namespace
@@ -85,16 +100,22 @@ TEST(BrownianDynamics, CheckpointContinuesBitForBitAndThreadsChangeNothing) {
   std::stringstream state;
   first.save_state(state);
   BdRun resumed = BdRun::load_state(state, 2);
+  ASSERT_EQ(resumed.params().threads, 2);
   resumed.run();
-  const BdResult r = resumed.result();
-  ASSERT_EQ(r.packing.size(), straight.packing.size());
-  for (std::size_t i = 0; i < r.packing.size(); ++i) {
-    EXPECT_EQ(r.packing.position[i].x, straight.packing.position[i].x) << i;
-    EXPECT_EQ(r.packing.position[i].y, straight.packing.position[i].y) << i;
-    EXPECT_EQ(r.packing.position[i].z, straight.packing.position[i].z) << i;
+  expect_same_bits(resumed.result(), straight, "1 thread, then resumed on 2");
+  // Coagulating runs (many bonds formed while the threads share the pairs), both bond models,
+  // at 1, 2 and 3 threads; 250 spheres are 4 chunks of the pair loop, so every thread has work.
+  for (const bool central : {false, true}) {
+    BdParams q = dense(0.0);
+    q.duration = 0.005;
+    q.central_bonds = central;
+    const BdResult one = brownian_dynamics(q, 5);
+    EXPECT_GT(one.status.bonds, 100) << central;
+    for (const int threads : {2, 3}) {
+      q.threads = threads;
+      expect_same_bits(brownian_dynamics(q, 5), one, fmt::format("central {} threads {}", central, threads));
+    }
   }
-  EXPECT_EQ(r.packing.bonds.i, straight.packing.bonds.i);
-  EXPECT_EQ(r.status.step, straight.status.step);
   // A damaged state is one InputError.
   std::string bytes = state.str();
   std::istringstream truncated(bytes.substr(0, bytes.size() / 2));

@@ -1,6 +1,7 @@
 #include "packlab/generate/brownian_dynamics.hpp"
 
 #include <fmt/format.h>
+#include <omp.h>
 
 #include <algorithm>
 #include <chrono>
@@ -13,6 +14,24 @@
 #include "packlab/io/options.hpp"
 
 namespace packlab::generate {
+
+namespace {
+
+// Neighbour-list skin [a]. The list only decides which pairs are examined: a pair unlisted at
+// the build was at least 2a + cutoff + skin apart, and the list is rebuilt before two spheres
+// can have closed that gap by the skin (2 max displacement >= skin, NeighborList::needs_rebuild),
+// so every pair within the cut-off is listed at any skin. A larger skin lists more pairs beyond
+// the cut-off and rebuilds less often: 0.3 a (rebuilt about every 60 steps at the default step,
+// 0.1 a every ~8) was the fastest of 0.1 ... 0.5 a (docs/bd.md). A different skin changes the
+// result only by rounding (positions are wrapped into the box at other steps). A checkpoint
+// keeps the skin its list was built with.
+constexpr double list_skin = 0.3;
+
+// Spheres per chunk of the pair loop (dynamic schedule: the thread that draws the normals
+// takes fewer); a pair's force goes to its own slot, so the chunking changes no result.
+constexpr int pair_chunk = 64;
+
+}  // namespace
 
 void BdParams::validate() const {
   BdParams copy = *this;
@@ -143,13 +162,21 @@ void BdRun::setup() {
   sample_every_ = std::max(1L, max_steps_ / std::max(1L, params_.samples));
   window_steps_ = std::max(1L, static_cast<long>(std::llround(params_.stable_window * tau / dt_)));
   radius_.assign(static_cast<std::size_t>(n), a);
+  normals_.assign(static_cast<std::size_t>(n), Vec3{});
   force_.assign(static_cast<std::size_t>(n), Vec3{});
   // Every sphere can hold max_bonds_per_sphere bonds: room for all of them, allocated once.
-  bonds_.reserve(static_cast<std::size_t>(n) * max_bonds_per_sphere / 2);
-  new_bonds_.reserve(static_cast<std::size_t>(n) * max_bonds_per_sphere / 2);
+  const std::size_t bond_room = static_cast<std::size_t>(n) * max_bonds_per_sphere / 2;
+  bonds_.reserve(bond_room);
+  bond_force_.reserve(bond_room);
+  new_bonds_.reserve(bond_room);
+  // The threads share that room (a thread finding more in one step grows its buffer once).
+  const std::size_t threads = static_cast<std::size_t>(std::max(1, params_.threads));
+  thread_new_bonds_.assign(threads, {});
+  for (auto& found : thread_new_bonds_) found.reserve(bond_room / threads + 1);
+  sphere_bonds_.assign(static_cast<std::size_t>(n), {});
   parent_.resize(static_cast<std::size_t>(n));
   size_.resize(static_cast<std::size_t>(n));
-  list_.set_skin(0.1 * a);
+  list_.set_skin(list_skin * a);
   list_.set_reach(params_.cutoff);
 }
 
@@ -174,6 +201,7 @@ BdRun::BdRun(const BdParams& params, Random rng) : params_(params), rng_(std::mo
   wraps_.assign(static_cast<std::size_t>(n), {0, 0, 0});
   partners_.assign(static_cast<std::size_t>(n), {});
   partner_count_.assign(static_cast<std::size_t>(n), 0);
+  index_bonds();
   status_ = measure();
   log_.push_back(status_);
 }
@@ -191,65 +219,192 @@ void BdRun::add_bond(int i, int j, const Vec3& d) {
     int& c = partner_count_[static_cast<std::size_t>(s)];
     if (c >= max_bonds_per_sphere)
       throw std::logic_error(fmt::format("brownian dynamics: sphere {} has {} bonds", s, c));
+    sphere_bonds_[static_cast<std::size_t>(s)][static_cast<std::size_t>(c)] = static_cast<int>(bonds_.size());
     partners_[static_cast<std::size_t>(s)][static_cast<std::size_t>(c++)] = s == i ? j : i;
   }
   bonds_.push_back({i, j, d * (bond_length_ / norm(d))});
 }
 
+void BdRun::index_bonds() {
+  // A sphere's partners_ slots were filled in bond order: its k-th slot is its k-th bond.
+  const std::size_t n = pos_.size();
+  std::vector<int> count(n, 0);
+  for (std::size_t b = 0; b < bonds_.size(); ++b)
+    for (const int s : {bonds_[b].i, bonds_[b].j}) {
+      if (s < 0 || static_cast<std::size_t>(s) >= n || count[static_cast<std::size_t>(s)] >= max_bonds_per_sphere)
+        fail_input("checkpoint is damaged: brownian dynamics bonds do not match the spheres");
+      const int c = count[static_cast<std::size_t>(s)]++;
+      if (partners_[static_cast<std::size_t>(s)][static_cast<std::size_t>(c)] !=
+          (s == bonds_[b].i ? bonds_[b].j : bonds_[b].i))
+        fail_input("checkpoint is damaged: brownian dynamics bonds do not match the bond partners");
+      sphere_bonds_[static_cast<std::size_t>(s)][static_cast<std::size_t>(c)] = static_cast<int>(b);
+    }
+  for (std::size_t s = 0; s < n; ++s)
+    if (count[s] != partner_count_[s])
+      fail_input("checkpoint is damaged: brownian dynamics bond counts do not match the bonds");
+}
+
+void BdRun::index_pairs() {
+  // Counting sort of the listed pairs by partner, in list order: incoming_first_[j + 1] ends
+  // up as the end of j's range (the start of j + 1's).
+  const int n = static_cast<int>(pos_.size());
+  const std::vector<int>& partner = list_.partner();
+  incoming_first_.assign(static_cast<std::size_t>(n) + 2, 0);
+  for (int i = 0; i < n; ++i)
+    for (int k = list_.first(i); k < list_.first(i + 1); ++k)
+      if (partner[static_cast<std::size_t>(k)] != i)
+        ++incoming_first_[static_cast<std::size_t>(partner[static_cast<std::size_t>(k)]) + 2];
+  for (int j = 0; j < n; ++j)
+    incoming_first_[static_cast<std::size_t>(j) + 2] += incoming_first_[static_cast<std::size_t>(j) + 1];
+  incoming_.resize(static_cast<std::size_t>(incoming_first_[static_cast<std::size_t>(n) + 1]));
+  for (int i = 0; i < n; ++i)
+    for (int k = list_.first(i); k < list_.first(i + 1); ++k) {
+      const int j = partner[static_cast<std::size_t>(k)];
+      if (j != i) incoming_[static_cast<std::size_t>(incoming_first_[static_cast<std::size_t>(j) + 1]++)] = k;
+    }
+  incoming_first_.pop_back();
+  pair_force_.resize(partner.size());
+  indexed_builds_ = list_.builds();
+}
+
+// Threads and the order of sums. One thread runs the serial loop: over the listed pairs, then
+// the bonds, each adding its force to both spheres. Several threads give every listed pair's
+// force its own slot (pairs of sphere i by whichever thread takes i's chunk) and every bond's
+// its own; after one barrier each sphere adds its slots in the serial loop's order: the pairs
+// where it is the partner (their owner i < it: earlier in the list) in list order, then its own
+// in list order, then its bonds in bond order. Every force is then the same sum in the same
+// order at any thread count. A pair that does not act (beyond the cut-off, bonded, its own
+// image) gives +0: adding it can only turn a -0 component into +0, which no position sees
+// (x + drift + noise xi with drift = ±0). New bonds are collected per thread, put in list order
+// (the serial loop's) and added after the update: they act from the next step on.
 void BdRun::step(bool brownian) {
   const int n = static_cast<int>(pos_.size());
   if (!built_ || list_.needs_rebuild(pos_, radius_)) {
     list_.build(box_, pos_, radius_, params_.threads, &wraps_);
     built_ = true;
   }
-  std::fill(force_.begin(), force_.end(), Vec3{});
-  new_bonds_.clear();
+  const int threads = static_cast<int>(thread_new_bonds_.size());
+  if (threads > 1 && indexed_builds_ != list_.builds()) index_pairs();
   const double a = params_.radius;
   const double bond_below = 2.0 * a + params_.bond_separation;
-  const std::vector<int>& partner = list_.partner();
-  const std::vector<std::uint8_t>& image = list_.image();
-  // DLVO between unbonded pairs within the cut-off, in list order.
-  for (int i = 0; i < n; ++i) {
-    const Vec3 xi = pos_[static_cast<std::size_t>(i)];
-    for (int k = list_.first(i); k < list_.first(i + 1); ++k) {
-      const int j = partner[static_cast<std::size_t>(k)];
-      if (j == i) continue;  // own image: the box is larger than twice the range
-      const Vec3 d = pos_[static_cast<std::size_t>(j)] + list_.image_offset(image[static_cast<std::size_t>(k)]) - xi;
-      const double r2 = norm2(d);
-      if (r2 >= reach2_ || bonded(i, j)) continue;
-      const double r = std::sqrt(r2);
-      if (r < bond_below) new_bonds_.push_back({i, j, d});
-      const double fn = dem::Dlvo::interaction_force(law_, a, a, r - 2.0 * a);
-      const Vec3 f = (fn / r) * d;
-      force_[static_cast<std::size_t>(j)] += f;
-      force_[static_cast<std::size_t>(i)] -= f;
-    }
-  }
-  // Bonds: F_j = -k_b (d - d_0).
   const bool central = params_.central_bonds;
-  for (const Bond& b : bonds_) {
-    const Vec3 d = box_.minimum_image(pos_[static_cast<std::size_t>(b.j)] - pos_[static_cast<std::size_t>(b.i)]);
+  const int bond_count = static_cast<int>(bonds_.size());
+  // Plain local pointers: inside the parallel region members would be reloaded through `this`.
+  const int* __restrict first = list_.first_pairs().data();
+  const int* __restrict partner = list_.partner().data();
+  const std::uint8_t* __restrict image = list_.image().data();
+  Vec3* __restrict pos = pos_.data();
+  Vec3* __restrict normals = normals_.data();
+  const Bond* __restrict bonds = bonds_.data();
+  const double reach2 = reach2_;
+  const dem::Dlvo::Params law = law_;
+  std::array<Vec3, 27> offset;
+  for (int c = 0; c < 27; ++c) offset[static_cast<std::size_t>(c)] = list_.image_offset(c);
+
+  // The normals from the one generator in sphere order. One normal_distribution per step,
+  // discarded at its end: no state outside rng_ between steps.
+  const auto draw_normals = [&] {
+    if (!brownian) return;
+    std::normal_distribution<double> normal(0.0, 1.0);
+    for (int i = 0; i < n; ++i) {
+      normals[i].x = normal(rng_.engine());
+      normals[i].y = normal(rng_.engine());
+      normals[i].z = normal(rng_.engine());
+    }
+  };
+  // Listed pair k of sphere i: the DLVO force on its partner when unbonded and within the
+  // cut-off, else +0; a pair closer than bond_separation is recorded as a new bond.
+  const auto pair_force = [&](int i, const Vec3& xi, int k, std::vector<NewBond>& found) {
+    const int j = partner[k];
+    if (j == i) return Vec3{};  // its own image: the box is larger than twice the range
+    const Vec3 d = pos[j] + offset[image[k]] - xi;
+    const double r2 = norm2(d);
+    if (r2 >= reach2 || bonded(i, j)) return Vec3{};
+    const double r = std::sqrt(r2);
+    if (r < bond_below) found.push_back({k, {i, j, d}});
+    const double fn = dem::Dlvo::interaction_force(law, a, a, r - 2.0 * a);
+    return (fn / r) * d;
+  };
+  // Bond b: F_j = -k_b (d - d_0) (central: along d only).
+  const auto bond_force = [&](int b) {
+    const Vec3 d = box_.minimum_image(pos[bonds[b].j] - pos[bonds[b].i]);
     const double r = norm(d);
-    const Vec3 f = central ? (-bond_k_ * (r - bond_length_) / r) * d : -bond_k_ * (d - b.rest);
-    force_[static_cast<std::size_t>(b.j)] += f;
-    force_[static_cast<std::size_t>(b.i)] -= f;
-  }
-  for (const Bond& b : new_bonds_)
-    if (!bonded(b.i, b.j)) add_bond(b.i, b.j, b.rest);
+    return central ? (-bond_k_ * (r - bond_length_) / r) * d : -bond_k_ * (d - bonds[b].rest);
+  };
   // Ermak-McCammon step: drift (capped at the rms Brownian step) + Brownian displacement.
-  // One normal_distribution per step, discarded at its end: no state outside rng_ between steps.
-  std::normal_distribution<double> normal(0.0, 1.0);
-  for (int i = 0; i < n; ++i) {
-    Vec3 drift = (mobility_ * dt_) * force_[static_cast<std::size_t>(i)];
+  const auto advance = [&](int i, const Vec3& force) {
+    Vec3 drift = (mobility_ * dt_) * force;
     const double length = norm(drift);
     if (length > max_drift_) drift *= max_drift_ / length;
-    Vec3 xi{};
-    if (brownian) {
-      xi.x = normal(rng_.engine());
-      xi.y = normal(rng_.engine());
-      xi.z = normal(rng_.engine());
+    const Vec3 xi = brownian ? normals[i] : Vec3{};
+    pos[i] += drift + noise_ * xi;
+  };
+
+  if (threads == 1) {
+    std::vector<NewBond>& found = thread_new_bonds_[0];
+    found.clear();
+    draw_normals();
+    Vec3* __restrict force = force_.data();
+    std::fill(force_.begin(), force_.end(), Vec3{});
+    for (int i = 0; i < n; ++i) {
+      const Vec3 xi = pos[i];
+      for (int k = first[i]; k < first[i + 1]; ++k) {
+        const Vec3 f = pair_force(i, xi, k, found);
+        force[partner[k]] += f;
+        force[i] -= f;
+      }
     }
-    pos_[static_cast<std::size_t>(i)] += drift + noise_ * xi;
+    for (int b = 0; b < bond_count; ++b) {
+      const Vec3 f = bond_force(b);
+      force[bonds[b].j] += f;
+      force[bonds[b].i] -= f;
+    }
+    for (int i = 0; i < n; ++i) advance(i, force[i]);
+  } else {
+    bond_force_.resize(bonds_.size());  // within the room reserved at setup
+    const int* __restrict incoming_first = incoming_first_.data();
+    const int* __restrict incoming = incoming_.data();
+    const int* __restrict bond_count_of = partner_count_.data();
+    const auto* __restrict bonds_of = sphere_bonds_.data();
+    Vec3* __restrict pair_slot = pair_force_.data();
+    Vec3* __restrict bond_slot = bond_force_.data();
+#pragma omp parallel num_threads(threads)
+    {
+      std::vector<NewBond>& found = thread_new_bonds_[static_cast<std::size_t>(omp_get_thread_num())];
+      found.clear();
+      // One thread draws the normals while the others start on the pairs.
+#pragma omp single nowait
+      draw_normals();
+#pragma omp for schedule(dynamic, pair_chunk) nowait
+      for (int i = 0; i < n; ++i) {
+        const Vec3 xi = pos[i];
+        for (int k = first[i]; k < first[i + 1]; ++k) pair_slot[k] = pair_force(i, xi, k, found);
+      }
+#pragma omp for schedule(dynamic, 256)
+      for (int b = 0; b < bond_count; ++b) bond_slot[b] = bond_force(b);
+        // (the barrier above: every slot and the normals are written)
+#pragma omp for schedule(dynamic, 256) nowait
+      for (int i = 0; i < n; ++i) {
+        Vec3 force{};
+        for (int m = incoming_first[i]; m < incoming_first[i + 1]; ++m) force += pair_slot[incoming[m]];
+        for (int k = first[i]; k < first[i + 1]; ++k) force -= pair_slot[k];
+        for (int c = 0; c < bond_count_of[i]; ++c) {
+          const int b = bonds_of[i][static_cast<std::size_t>(c)];
+          if (bonds[b].j == i)
+            force += bond_slot[b];
+          else
+            force -= bond_slot[b];
+        }
+        advance(i, force);
+      }
+    }
+  }
+  new_bonds_.clear();
+  for (const auto& found : thread_new_bonds_) new_bonds_.insert(new_bonds_.end(), found.begin(), found.end());
+  if (!new_bonds_.empty()) {
+    std::sort(new_bonds_.begin(), new_bonds_.end(), [](const NewBond& x, const NewBond& y) { return x.pair < y.pair; });
+    for (const NewBond& b : new_bonds_)
+      if (!bonded(b.bond.i, b.bond.j)) add_bond(b.bond.i, b.bond.j, b.bond.rest);
   }
   if (brownian) ++step_;
 }
@@ -419,6 +574,7 @@ BdRun BdRun::load_state(std::istream& in, int threads) {
   binary::read(in, r.seconds_, "seconds");
   binary::read(in, r.built_, "list built");
   if (r.built_) r.list_.load(in);
+  r.index_bonds();
   return r;
 }
 

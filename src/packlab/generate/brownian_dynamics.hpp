@@ -37,9 +37,10 @@
 //    when the number of bonds grew by less than stable_tolerance (relative) over the last
 //    stable_window diffusion times.
 //  - Every random number comes from the one generator (core/random.hpp), drawn in particle
-//    order every step; the pair sums run in neighbour-list order on one thread: the same seed
-//    gives the same bits (the list's `threads` only builds the list, whose result does not
-//    depend on them).
+//    order every step (on one thread, while the others evaluate pairs). `threads` build the
+//    list and evaluate the pairs and bonds, each into its own slot; every sphere then sums its
+//    slots in one fixed order, the order of the serial loop (pairs in list order, then bonds
+//    in bond order): the same seed gives the same bits at any thread count.
 #pragma once
 
 #include <cstdint>
@@ -85,7 +86,7 @@ struct BdParams {
   double stable_window = 1.0;       // [a^2 / D_0]
   double stable_tolerance = 0.005;  // relative growth of the bond count per window
   long samples = 200;               // rows of the log (and the MSD) over the run
-  int threads = 1;                  // neighbour-list build
+  int threads = 1;                  // neighbour list, pair and bond forces, the update
   void validate() const;            // InputError naming key, value and range
 
   double kT() const { return boltzmann_constant * temperature; }
@@ -165,6 +166,8 @@ class BdRun {
   BdStatus measure() const;
   bool bonded(int i, int j) const;
   void add_bond(int i, int j, const Vec3& d);
+  void index_pairs();  // incoming_ from the list (after each rebuild)
+  void index_bonds();  // sphere_bonds_ from bonds_ (after setup or load)
 
   BdParams params_;
   // Derived by setup().
@@ -194,9 +197,22 @@ class BdRun {
   double seconds_ = 0.0;
   bool built_ = false;
   NeighborList list_{0.0};
-  // Working memory (allocated once).
-  std::vector<Vec3> force_;
-  std::vector<Bond> new_bonds_;
+  // Derived from the state (not saved): each sphere's bonds in bond order (its slots of
+  // partners_), and for each sphere the listed pairs where it is the partner, in list order.
+  std::vector<std::array<int, max_bonds_per_sphere>> sphere_bonds_;
+  std::vector<int> incoming_first_, incoming_;
+  long indexed_builds_ = -1;  // list_.builds() of incoming_
+  // Working memory (sized at setup and at list rebuilds, not in the step).
+  struct NewBond {
+    int pair;  // listed pair index: list order, the serial loop's order
+    Bond bond;
+  };
+  std::vector<Vec3> force_;       // per sphere (one thread)
+  std::vector<Vec3> pair_force_;  // per listed pair: the force on its partner, +0 when it does not act (threads)
+  std::vector<Vec3> bond_force_;  // per bond: the force on b.j (threads)
+  std::vector<Vec3> normals_;     // the step's normals, three per sphere in sphere order
+  std::vector<std::vector<NewBond>> thread_new_bonds_;
+  std::vector<NewBond> new_bonds_;
   mutable std::vector<int> parent_, size_;
 };
 

@@ -383,7 +383,8 @@ void add_bd_params(ConfigSchema& schema, generate::BdParams& p) {
       .range(ranges::non_negative)
       .integer("samples", p.samples, "Rows of the log (bd_log.csv, msd.csv) over the run")
       .range({1.0, 1e6, false, false})
-      .integer("threads", p.threads, "Threads of the neighbour search")
+      .integer("threads", p.threads,
+               "Threads of the neighbour search and the pair and bond forces (same bits at any count)")
       .range({1.0, 1024.0, false, false});
 }
 

@@ -80,6 +80,9 @@ struct Dlvo {
     return {energy, van_der_waals_force(p, a1, a2, h)};
   }
   static Value double_layer(const Params& p, double a1, double a2, double h) {
+    // Uncharged surfaces (psi_0 = 0, a paper case): both terms are +0 (what the formulas give
+    // for h > 0), without the exponential.
+    if (p.potential_i == 0.0 && p.potential_j == 0.0) return {0.0, 0.0};
     const double kappa = 1.0 / p.debye_length;
     const double x = std::exp(-kappa * h);
     const double prefactor = std::numbers::pi * p.relative_permittivity * vacuum_permittivity * a1 * a2 / (a1 + a2);
