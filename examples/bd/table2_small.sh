@@ -6,7 +6,8 @@
 # k_n = 100 N/m (examples/shear/table2_small.toml, as docs/shear.md's VEM rows).
 # Writes OUTDIR/bd_table2_small.csv (copied to docs/data/ by hand after a run).
 # usage: examples/bd/table2_small.sh OUTDIR [PACKLAB]
-#   env: N (1000), DURATION (in a^2/D_0; 1 for 0 mV, 3 for the others), BONDS ("" or "--central-bonds")
+#   env: N (1000), DURATION (in a^2/D_0; 1 for 0 mV, 3 for the others), BONDS ("" or "--central-bonds"),
+#        SEED (1), THREADS (1: the BD run's threads; the result does not depend on them)
 set -euo pipefail
 OUT=${1:?usage: table2_small.sh OUTDIR [PACKLAB]}
 B=${2:-packlab}
@@ -14,6 +15,8 @@ HERE=$(cd "$(dirname "$0")" && pwd)
 N=${N:-1000}
 PSI=${PSI:-"0 15"}
 BONDS=${BONDS:-}
+SEED=${SEED:-1}
+THREADS=${THREADS:-1}
 mkdir -p "$OUT"
 for mv in $PSI; do
   d="$OUT/psi$mv"
@@ -21,7 +24,7 @@ for mv in $PSI; do
   dur=${DURATION:-$([ "$mv" = 0 ] && echo 1 || echo 3)}
   [ -f "$d/bd/report.json" ] ||
     "$B" generate bd --particles "$N" --phi 0.4 --surface-potential "${mv}e-3" --duration "$dur" $BONDS \
-      --seed 1 --quiet --out "$d/bd"
+      --seed "$SEED" --threads "$THREADS" --quiet --out "$d/bd"
   [ -f "$d/doh/report.json" ] ||
     "$B" analyze "$d/bd/packing.xyz" --what cn,doh --threads 1 --quiet --no-plots --out "$d/doh"
   [ -f "$d/bonded.vtu" ] ||

@@ -34,3 +34,23 @@ def test_vem_study_figures_from_tables(tmp_path):
     for name, fig in [("studies", vem_study.studies(study, curves)), ("stiffness", vem_study.stiffness(study))]:
         packlab.plot.save(fig, tmp_path / f"{name}.png")
         assert (tmp_path / f"{name}.png").stat().st_size > 1000
+
+
+def test_bd_table2_figures_from_tables(tmp_path):
+    # The tables examples/bd/time_series.sh and examples/bd/fig5.sh write, synthetic values.
+    import packlab.plot.bd_table2 as bd_table2
+
+    (tmp_path / "time.csv").write_text(
+        "surface_potential_mV,particles,time_diffusion_times,bonds_bd,largest_cluster_fraction,a,b,C,"
+        "storage_modulus_Pa,storage_modulus_std_Pa\n"
+        "0,8000,0.05,18824,1.0,0.37,0.01,4.7,9e5,4e4\n0,8000,1.0,25034,1.0,0.49,-0.01,5.5,3.5e6,4e4\n"
+        "15,8000,3.0,21315,1.0,0.49,-0.02,5.3,3.4e6,6e4\n")
+    (tmp_path / "fig5.csv").write_text(
+        "# HO = a, HE = b\nk_n_N_per_m,G_HO_Pa,G_HO_std_Pa,G_HE_Pa,G_HE_std_Pa,ratio_HE_HO\n"
+        "50,1.7e6,2e4,1.7e6,3e4,0.97\n100,3.5e6,4e4,3.4e6,6e4,0.97\n")
+    for which in ("time", "fig5"):
+        fig = bd_table2.figure(which, tmp_path / f"{which}.csv")
+        packlab.plot.save(fig, tmp_path / f"{which}.png")
+        assert (tmp_path / f"{which}.png").stat().st_size > 1000
+    fig = bd_table2.figure("fig5", tmp_path / "fig5.csv")
+    assert "0.97" in fig.axes[0].get_title()

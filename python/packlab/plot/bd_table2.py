@@ -1,0 +1,63 @@
+"""Table 2's BD rows at the paper's size (docs/bd.md): ``time`` (DOH parameter a, coordination
+C and G'_p of the N = 8000 gels against the time simulated, from ``examples/bd/time_series.sh``,
+with the paper's values of the 0 and 15 mV structures) and ``fig5`` (G'_p of the least and the
+most heterogeneous structure against the particle normal stiffness k_n, the paper's Fig. 5, from
+``examples/bd/fig5.sh``)."""
+
+from packlab.plot._common import UsageError, argument, read_csv, run, subplots
+
+# doh-elastic-properties Table 2, BD rows: psi_0 [mV] -> (a, C, G'_p [MPa], its SD).
+PAPER = {0: (0.373, 4.52, 0.480, 0.049), 15: (0.536, 4.97, 1.62, 0.213)}
+
+
+def time_figure(csv_path):
+    data = read_csv(csv_path)
+    fig, axes = subplots(1, 3, width=11.0, height=3.4)
+    columns = [("a", "DOH parameter a"), ("C", "coordination C (eps 0.01)"), ("storage_modulus_Pa", "G'_p [MPa]")]
+    for k, mv in enumerate(sorted(set(data["surface_potential_mV"]))):
+        rows = sorted(i for i, p in enumerate(data["surface_potential_mV"]) if p == mv)
+        rows.sort(key=lambda i: data["time_diffusion_times"][i])
+        t = [data["time_diffusion_times"][i] for i in rows]
+        for ax, (name, label) in zip(axes, columns):
+            scale = 1e-6 if name == "storage_modulus_Pa" else 1.0
+            ax.plot(t, [scale * data[name][i] for i in rows], f"C{k}o-", ms=4, label=f"packlab, {mv:g} mV")
+            paper = PAPER.get(int(round(mv)))
+            if paper:
+                value = {"a": paper[0], "C": paper[1], "storage_modulus_Pa": paper[2]}[name]
+                ax.axhline(value, color=f"C{k}", ls="--", lw=1, label=f"paper, {mv:g} mV")
+            ax.set_xscale("log")
+            ax.set_xlabel("time simulated t D_0 / a^2")
+            ax.set_ylabel(label)
+    axes[0].legend(fontsize=7)
+    fig.suptitle("BD gels, N = 8000, Phi = 0.4, central bonds, seed 1")
+    return fig
+
+
+def fig5_figure(csv_path):
+    data = read_csv(csv_path)
+    fig, ax = subplots()
+    kn = data["k_n_N_per_m"]
+    for k, (key, label) in enumerate([("G_HO", "0 mV (homogeneous)"), ("G_HE", "15 mV (heterogeneous)")]):
+        ax.errorbar(kn, [1e-6 * g for g in data[f"{key}_Pa"]], yerr=[1e-6 * s for s in data[f"{key}_std_Pa"]],
+                    fmt=f"C{k}o-", ms=4, capsize=2, label=f"packlab, {label}")
+    for k, mv in enumerate((0, 15)):
+        ax.errorbar([100.0], [PAPER[mv][2]], yerr=[PAPER[mv][3]], fmt=f"C{k}s", mfc="none", ms=7, capsize=3,
+                    label=f"paper Table 2, {mv} mV")
+    ratios = data["ratio_HE_HO"]
+    ax.set_xlabel("particle normal stiffness k_n [N/m] (k_s = k_n / 10)")
+    ax.set_ylabel("G'_p [MPa]")
+    ax.set_title(f"Fig. 5: G'_HE / G'_HO = {min(ratios):.2f}-{max(ratios):.2f} (paper 3.4)")
+    ax.legend(fontsize=7)
+    return fig
+
+
+def figure(which, csv_path):
+    if which == "time":
+        return time_figure(csv_path)
+    if which == "fig5":
+        return fig5_figure(csv_path)
+    raise UsageError(f"unknown figure '{which}' (time, fig5)")
+
+
+def main(argv):
+    return run("bd_table2", argv, figure, argument("which"), argument("csv_path"))
