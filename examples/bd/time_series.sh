@@ -10,14 +10,14 @@
 #        SEEDS ("1"; seed 1 in OUTDIR/t<mV>_<t>, seed s in OUTDIR/t<mV>_<t>_s<s>), SEEDS0 / SEEDS15
 #        (the seeds of the 0 and 15 mV runs, default SEEDS), THREADS (1), CSV (the table's name)
 # docs/data/bd_time_series_ns8000.csv: the defaults; docs/data/bd_seeds_ns8000.csv:
-#   SEEDS="1 2 3" T0="0.05 1" T15="3" CSV=bd_seeds_ns8000.csv
+#   SEEDS="1 2 3" T0="0.05 1" T15="2.2" CSV=bd_seeds_ns8000.csv
 set -euo pipefail
 OUT=${1:?usage: time_series.sh OUTDIR [PACKLAB]}
 B=${2:-packlab}
 HERE=$(cd "$(dirname "$0")" && pwd)
 N=${N:-8000}
-T0=${T0:-"0.02 0.05 0.1 0.2 0.5 1"}
-T15=${T15:-"1.5 2.2 3"}
+T0=${T0-"0.02 0.05 0.1 0.2 0.5 1"}
+T15=${T15-"1.5 2.2 3"}
 mkdir -p "$OUT"
 SEEDS=${SEEDS:-1}
 SEEDS0=${SEEDS0:-$SEEDS}

@@ -3,9 +3,11 @@
 // packlab.InputError (a ValueError) with the message the command line prints.
 #include "common.hpp"
 #include "packlab/core/error.hpp"
+#include "packlab/core/thread_wait.hpp"
 #include "packlab/io/report.hpp"
 
 PYBIND11_MODULE(_core, m) {
+  packlab::fixed_thread_teams();  // the thread counts asked for, never fewer (core/thread_wait.hpp)
   m.doc() = "packlab: random sphere packings, their microstructure and DEM load tests (compiled core).";
   py::register_exception<packlab::InputError>(m, "InputError", PyExc_ValueError);
   m.attr("InputError").attr("__doc__") =

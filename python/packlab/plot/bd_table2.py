@@ -46,7 +46,8 @@ def fig5_figure(csv_path):
     ratios = data["ratio_HE_HO"]
     ax.set_xlabel("particle normal stiffness k_n [N/m] (k_s = k_n / 10)")
     ax.set_ylabel("G'_p [MPa]")
-    ax.set_title(f"Fig. 5: G'_HE / G'_HO = {min(ratios):.2f}-{max(ratios):.2f} (paper 3.4)")
+    low, high = f"{min(ratios):.2f}", f"{max(ratios):.2f}"
+    ax.set_title(f"Fig. 5: G'_HE / G'_HO = {low if low == high else low + '-' + high} (paper 3.4)")
     ax.legend(fontsize=7)
     return fig
 

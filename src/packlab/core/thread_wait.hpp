@@ -11,6 +11,13 @@
 namespace packlab {
 
 // Call first thing in main(): returns only when the policy is in place (or cannot be set).
+// Also turns OpenMP's dynamic team sizes off (fixed_thread_teams()).
 void ensure_passive_thread_wait(char** argv);
+
+// Every parallel region gets the threads it asks for: with OMP_DYNAMIC=true libgomp may give a
+// smaller team on a loaded machine, and the regions that split their work into fixed per-thread
+// ranges (the engine's step, the neighbour list's build, BD's new-bond lists) would leave the
+// missing threads' ranges undone (found: the start of `generate bd` stopped with an overlap).
+void fixed_thread_teams();
 
 }  // namespace packlab
