@@ -6,7 +6,7 @@
 # same seed, so a shorter run is the start of a longer one (up to its final quench).
 # Writes OUTDIR/$CSV (copied to docs/data/ by hand after a run).
 # usage: examples/bd/time_series.sh OUTDIR [PACKLAB]
-#   env: N (8000), T0 ("0.02 0.05 0.1 0.2 0.5 1": times at 0 mV, in a^2/D_0), T15 ("1.5 2.2 3"),
+#   env: N (8000), T0 ("0.02 0.05 0.1 0.2 0.5 1": times at 0 mV, in a^2/D_0), T15 ("1.5 2.2 3 6"),
 #        SEEDS ("1"; seed 1 in OUTDIR/t<mV>_<t>, seed s in OUTDIR/t<mV>_<t>_s<s>), SEEDS0 / SEEDS15
 #        (the seeds of the 0 and 15 mV runs, default SEEDS), THREADS (1), CSV (the table's name)
 # docs/data/bd_time_series_ns8000.csv: the defaults; docs/data/bd_seeds_ns8000.csv:
@@ -17,7 +17,7 @@ B=${2:-packlab}
 HERE=$(cd "$(dirname "$0")" && pwd)
 N=${N:-8000}
 T0=${T0-"0.02 0.05 0.1 0.2 0.5 1"}
-T15=${T15-"1.5 2.2 3"}
+T15=${T15-"1.5 2.2 3 6"}
 mkdir -p "$OUT"
 SEEDS=${SEEDS:-1}
 SEEDS0=${SEEDS0:-$SEEDS}
