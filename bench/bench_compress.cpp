@@ -37,11 +37,7 @@ int main(int argc, char** argv) {
   mechanics::UniaxialCompressionSetup setup;
   setup.options.threads = threads;
   setup.finish(model);
-  dem::EngineConfig config;
-  config.contact_law = "hertz_mindlin";
-  config.types = setup.options.types;
-  config.bond_materials = setup.options.bond_materials;
-  config.threads = threads;
+  const dem::EngineConfig config = mechanics::compression_engine_config(setup.options);
 
   // Memory: an engine with the bonds, and one without.
   Packing bare = model;

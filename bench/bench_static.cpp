@@ -623,11 +623,8 @@ int orderings(int argc, char** argv) {
   mechanics::UniaxialCompressionResult info;
   const mechanics::UniaxialCompressionSpecimen specimen =
       mechanics::prepare_uniaxial_compression(model, setup.options, info);
-  dem::EngineConfig config;
-  config.contact_law = "hertz_mindlin";
-  config.types = setup.options.types;
-  config.bond_materials = setup.options.bond_materials;
-  const mechanics::StaticLinks links = mechanics::linearize_links(specimen.model, config);
+  const mechanics::StaticLinks links =
+      mechanics::linearize_links(specimen.model, mechanics::compression_engine_config(setup.options));
   mechanics::StiffnessAssembly a(links, specimen.model.fixed);
   a.assemble({}, 1e-12);
   fmt::print("unknowns {}, matrix nonzeros {} (lower)\n", a.unknowns(), a.values().size());

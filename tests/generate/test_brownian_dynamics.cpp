@@ -105,21 +105,65 @@ TEST(BrownianDynamics, CheckpointContinuesBitForBitAndThreadsChangeNothing) {
   expect_same_bits(resumed.result(), straight, "1 thread, then resumed on 2");
   // Coagulating runs (many bonds formed while the threads share the pairs), both bond models,
   // at 1, 2 and 3 threads; 250 spheres are 4 chunks of the pair loop, so every thread has work.
-  for (const bool central : {false, true}) {
+  for (const int model : {0, 1, 2}) {  // rigid, central, slip bonds
     BdParams q = dense(0.0);
     q.duration = 0.005;
-    q.central_bonds = central;
+    q.central_bonds = model == 1;
+    q.bond_slip_force = model == 2 ? 3e-12 : 0.0;  // N: about the thermal bond force, some slip
     const BdResult one = brownian_dynamics(q, 5);
-    EXPECT_GT(one.status.bonds, 100) << central;
+    EXPECT_GT(one.status.bonds, 100) << model;
     for (const int threads : {2, 3}) {
       q.threads = threads;
-      expect_same_bits(brownian_dynamics(q, 5), one, fmt::format("central {} threads {}", central, threads));
+      expect_same_bits(brownian_dynamics(q, 5), one, fmt::format("bond model {} threads {}", model, threads));
     }
   }
   // A damaged state is one InputError.
   std::string bytes = state.str();
   std::istringstream truncated(bytes.substr(0, bytes.size() / 2));
   EXPECT_FALSE(test::error_of([&] { BdRun::load_state(truncated); }).empty());
+}
+
+// The slip bond's return mapping against its geometry: within the limit d_0 stays; beyond it
+// the new d_0 keeps its length L_0, lies in the plane of d_0 and d on d_0's side, its part
+// normal to d is exactly the limit (the tangential force k_b |.| is F_s), and mapping it again
+// changes nothing.
+TEST(BrownianDynamics, SlipBondTurnsItsRestDirectionUntilTheTangentialForceIsTheSlipForce) {
+  const double length = 5.01e-7;
+  const Vec3 rest{length, 0.0, 0.0};
+  const Vec3 d = 1.002 * length * Vec3{std::cos(0.3), std::sin(0.3), 0.0};  // rolled by 0.3 rad
+  const Vec3 n = (1.0 / norm(d)) * d;
+  const double offset_now = norm(rest - dot(rest, n) * n);  // L_0 sin 0.3
+  EXPECT_NEAR(offset_now, length * std::sin(0.3), 1e-12 * length);
+  const Vec3 kept = slip_bond_rest(rest, d, length, 1.01 * offset_now);
+  EXPECT_EQ(kept.x, rest.x);
+  EXPECT_EQ(kept.y, rest.y);
+  const double limit = 0.1 * offset_now;
+  const Vec3 slipped = slip_bond_rest(rest, d, length, limit);
+  EXPECT_NEAR(norm(slipped), length, 1e-12 * length);
+  EXPECT_NEAR(norm(slipped - dot(slipped, n) * n), limit, 1e-12 * length);
+  EXPECT_EQ(slipped.z, 0.0);
+  // Between d_0 and d: turned by 0.3 rad less the angle the limit leaves, asin(0.1 sin 0.3).
+  EXPECT_NEAR(std::atan2(slipped.y, slipped.x), 0.3 - std::asin(0.1 * std::sin(0.3)), 1e-12);
+  const Vec3 again = slip_bond_rest(slipped, d, length, limit);
+  EXPECT_NEAR(norm(again - slipped), 0.0, 1e-12 * length);
+}
+
+// A slip force no bond reaches gives the rigid run bit for bit; a tiny one lets the aggregates
+// restructure as central bonds do: more bonds than rigid ones form in the same time.
+TEST(BrownianDynamics, SlipBondsLieBetweenRigidAndCentralBonds) {
+  BdParams q = dense(0.0);
+  q.duration = 0.02;
+  const BdResult rigid = brownian_dynamics(q, 9);
+  q.bond_slip_force = 1.0;  // N: far beyond any force here
+  expect_same_bits(brownian_dynamics(q, 9), rigid, "slip force 1 N");
+  q.bond_slip_force = 1e-20;
+  const BdResult slipping = brownian_dynamics(q, 9);
+  q.bond_slip_force = 0.0;
+  q.central_bonds = true;
+  const BdResult central = brownian_dynamics(q, 9);
+  EXPECT_GT(slipping.status.bonds, rigid.status.bonds);
+  EXPECT_GT(central.status.bonds, rigid.status.bonds);
+  EXPECT_LT(std::abs(slipping.status.bonds - central.status.bonds), slipping.status.bonds - rigid.status.bonds);
 }
 
 TEST(BrownianDynamics, BadInputNamesTheKeyAndItsRange) {
@@ -132,4 +176,8 @@ TEST(BrownianDynamics, BadInputNamesTheKeyAndItsRange) {
   p = BdParams{};
   p.bond_separation = 1e-6;
   EXPECT_NE(test::error_of([&] { p.validate(); }).find("bond_separation"), std::string::npos);
+  p = BdParams{};
+  p.central_bonds = true;
+  p.bond_slip_force = 1e-12;
+  EXPECT_NE(test::error_of([&] { p.validate(); }).find("bond_slip_force"), std::string::npos);
 }

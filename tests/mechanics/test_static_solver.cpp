@@ -355,11 +355,7 @@ LinearizedSample linearized_sample(unsigned seed) {
   UniaxialCompressionResult info;
   LinearizedSample out;
   out.specimen = prepare_uniaxial_compression(random_bonded_sample(300, seed), o, info);
-  dem::EngineConfig config;
-  config.contact_law = "hertz_mindlin";
-  config.types = o.types;
-  config.bond_materials = o.bond_materials;
-  out.links = linearize_links(out.specimen.model, config);
+  out.links = linearize_links(out.specimen.model, compression_engine_config(o));
   out.q0.assign(6 * out.specimen.model.size(), 0.0);
   for (std::size_t k = 0; k < out.specimen.model.size(); ++k)
     if (out.specimen.grip[k]) out.q0[6 * k + 2] = -1e-3 * info.height;

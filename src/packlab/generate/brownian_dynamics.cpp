@@ -44,6 +44,8 @@ void BdParams::validate() const {
   require(bond_separation > 0.0 && bond_separation < cutoff, "bond_separation", bond_separation,
           fmt::format("in (0, cutoff = {:g} m)", cutoff));
   require(std::isfinite(lambda) && lambda > 0.0, "debye_length", lambda, "> 0 m");
+  require(!(central_bonds && bond_slip_force > 0.0), "bond_slip_force", bond_slip_force,
+          "0 with central_bonds (a central bond resists no tangential force)");
   // A periodic image may interact with a sphere only once: bonds use the minimum image.
   const double range = 2.0 * radius + cutoff;
   require(box_edge() > 2.0 * range, "particles", static_cast<double>(particles),
@@ -295,7 +297,7 @@ void BdRun::step(bool brownian) {
   const std::uint8_t* __restrict image = list_.image().data();
   Vec3* __restrict pos = pos_.data();
   Vec3* __restrict normals = normals_.data();
-  const Bond* __restrict bonds = bonds_.data();
+  Bond* __restrict bonds = bonds_.data();  // slip bonds move their rest direction (each by its own iteration)
   const double reach2 = reach2_;
   const dem::Dlvo::Params law = law_;
   std::array<Vec3, 27> offset;
@@ -325,11 +327,18 @@ void BdRun::step(bool brownian) {
     const double fn = dem::Dlvo::interaction_force(law, a, a, r - 2.0 * a);
     return (fn / r) * d;
   };
-  // Bond b: F_j = -k_b (d - d_0) (central: along d only).
+  // Bond b: F_j = -k_b (d - d_0) (central: along d only). A slip bond first turns d_0 towards d
+  // when its tangential force k_b |d_0 - (d_0 . n) n| exceeds F_s: the new d_0 keeps its length
+  // and has the tangential part F_s / k_b on the side it had (the slider's return mapping).
+  const double slip_offset = params_.bond_slip_force > 0.0 ? params_.bond_slip_force / bond_k_ : 0.0;
   const auto bond_force = [&](int b) {
     const Vec3 d = box_.minimum_image(pos[bonds[b].j] - pos[bonds[b].i]);
-    const double r = norm(d);
-    return central ? (-bond_k_ * (r - bond_length_) / r) * d : -bond_k_ * (d - bonds[b].rest);
+    if (central) {
+      const double r = norm(d);
+      return (-bond_k_ * (r - bond_length_) / r) * d;
+    }
+    if (slip_offset > 0.0) bonds[b].rest = slip_bond_rest(bonds[b].rest, d, bond_length_, slip_offset);
+    return -bond_k_ * (d - bonds[b].rest);
   };
   // Ermak-McCammon step: drift (capped at the rms Brownian step) + Brownian displacement.
   const auto advance = [&](int i, const Vec3& force) {
@@ -407,6 +416,15 @@ void BdRun::step(bool brownian) {
       if (!bonded(b.bond.i, b.bond.j)) add_bond(b.bond.i, b.bond.j, b.bond.rest);
   }
   if (brownian) ++step_;
+}
+
+Vec3 slip_bond_rest(const Vec3& rest, const Vec3& d, double rest_length, double max_offset) {
+  const Vec3 n = (1.0 / norm(d)) * d;
+  const Vec3 tangential = rest - dot(rest, n) * n;
+  const double offset = norm(tangential);
+  if (offset <= max_offset) return rest;
+  const double sine = std::min(1.0, max_offset / rest_length);
+  return rest_length * (std::sqrt(1.0 - sine * sine) * n + (sine / offset) * tangential);
 }
 
 BdStatus BdRun::measure() const {
@@ -520,7 +538,7 @@ BdResult BdRun::result() const {
 // ---- checkpoints ----
 
 namespace {
-constexpr std::uint64_t bd_state_version = 1;
+constexpr std::uint64_t bd_state_version = 2;  // 2: bond_slip_force
 }
 
 void BdRun::save_state(std::ostream& out) const {

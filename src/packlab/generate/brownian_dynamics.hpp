@@ -30,6 +30,12 @@
 //    alone), so aggregates restructure until each sphere is held by several bonds. k_b = bond_stiffness_factor * 6 pi
 //    eta a / dt (stable explicit steps for up to 12 bonds per sphere at the default 0.05). Bonded pairs feel no DLVO
 //    force (the bond replaces it).
+//    Between the two, bond_slip_force F_s > 0: the rigid bond resists rolling and sliding up to
+//    a tangential force F_s; beyond it the contact point slips (its rest direction d_0 turns
+//    towards d until the tangential force is F_s, like a Coulomb slider on the tangential
+//    spring), so aggregates hold their shape under thermal forces (k_B T / a ~ 1.6e-14 N) and
+//    restructure only where forces exceed F_s. F_s -> 0 approaches the central bond (with a
+//    rest length kept along d), F_s -> infinity the rigid one.
 //  - At the end, quench_steps steps without the Brownian displacement (time does not advance):
 //    the bonds relax from their thermal stretch (sqrt(k_B T / k_b), a few nm) to d_0, so that a
 //    later contact criterion (1 + eps) 2a finds every bonded pair (packlab bond --eps 0.01).
@@ -78,6 +84,7 @@ struct BdParams {
   double bond_separation = 1.0e-9;      // pairs closer than this stick [m]
   double bond_stiffness_factor = 0.05;  // k_b dt / (6 pi eta a)
   bool central_bonds = false;           // bonds resist stretching only (spheres roll on each other)
+  double bond_slip_force = 0.0;         // [N] tangential force at which a bond's contact point slips; 0: never
   long quench_steps = 200;              // noise-free steps at the end: bonds relax to their rest length
   double step_fraction = 0.1;           // rms Brownian step per axis / Debye length
   double time_step = 0.0;               // [s]; 0: from step_fraction
@@ -215,6 +222,11 @@ class BdRun {
   std::vector<NewBond> new_bonds_;
   mutable std::vector<int> parent_, size_;
 };
+
+// The slip bond's return mapping: the rest vector d_0 (length L_0) of a bond whose spheres are
+// now at d, turned towards d (keeping L_0, in the plane of d_0 and d) just enough that its part
+// normal to d is at most max_offset = F_s / k_b; unchanged when it is already within.
+Vec3 slip_bond_rest(const Vec3& rest, const Vec3& d, double rest_length, double max_offset);
 
 // Runs the whole method: BdRun(params, Random(seed)).run() and its result.
 BdResult brownian_dynamics(const BdParams& params, std::uint64_t seed,

@@ -366,6 +366,10 @@ void add_bd_params(ConfigSchema& schema, generate::BdParams& p) {
       .range({0.0, 0.08, true, false})
       .boolean("central_bonds", p.central_bonds,
                "Bonds resist stretching only: bonded spheres roll on each other (default: rigid bonds)")
+      .number("bond_slip_force", p.bond_slip_force,
+              "Tangential force beyond which a rigid bond's contact point slips (rolls on); 0: never")
+      .unit("N")
+      .range(ranges::non_negative)
       .integer("quench_steps", p.quench_steps, "Noise-free steps at the end that relax the bonds to their rest length")
       .range(ranges::non_negative)
       .number("step_fraction", p.step_fraction, "Rms Brownian displacement per axis and step / Debye length")

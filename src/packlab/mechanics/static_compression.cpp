@@ -45,12 +45,7 @@ UniaxialCompressionResult run_static_uniaxial_compression(const Packing& bonded_
   const std::vector<std::uint8_t>& grip = specimen.grip;
   const std::size_t n = model.size();
 
-  dem::EngineConfig config;
-  config.contact_law = "hertz_mindlin";
-  config.types = options.types;
-  config.bond_materials = options.bond_materials;
-  config.threads = options.threads;
-  const StaticLinks links = linearize_links(model, config);
+  const StaticLinks links = linearize_links(model, compression_engine_config(options));
   StaticSolverOptions solver_options;
   solver_options.backend = options.solver_backend;
   solver_options.petsc_options = options.petsc_options;

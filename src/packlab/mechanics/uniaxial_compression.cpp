@@ -63,6 +63,17 @@ void load_compression_state(std::istream& in, dem::Engine& engine, bool& stopped
 
 }  // namespace
 
+dem::EngineConfig compression_engine_config(const UniaxialCompressionOptions& options) {
+  dem::EngineConfig config;
+  config.contact_law = "hertz_mindlin";
+  config.types = options.types;
+  config.bond_materials = options.bond_materials;
+  config.time_step = options.time_step;
+  config.time_step_safety = options.time_step_safety;
+  config.threads = options.threads;
+  return config;
+}
+
 UniaxialCompressionResult run_uniaxial_compression(const Packing& bonded_model,
                                                    const UniaxialCompressionOptions& options) {
   if (options.solver == "static") return run_static_uniaxial_compression(bonded_model, options);
@@ -75,14 +86,7 @@ UniaxialCompressionResult run_uniaxial_compression(const Packing& bonded_model,
   const bool glued = options.plate == "glued";
   const std::size_t n = model.size();
 
-  dem::EngineConfig config;
-  config.contact_law = "hertz_mindlin";
-  config.types = options.types;
-  config.bond_materials = options.bond_materials;
-  config.time_step = options.time_step;
-  config.time_step_safety = options.time_step_safety;
-  config.threads = options.threads;
-  dem::Engine engine(model, config);
+  dem::Engine engine(model, compression_engine_config(options));
   const double dt = engine.time_step();
   result.time_step = dt;
   result.plate_speed = options.strain_rate * result.height;

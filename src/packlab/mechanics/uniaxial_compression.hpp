@@ -167,6 +167,10 @@ UniaxialCompressionSpecimen prepare_uniaxial_compression(const Packing& bonded_m
                                                          const UniaxialCompressionOptions& options,
                                                          UniaxialCompressionResult& result);
 
+// The engine a compression runs (and the static solver linearizes): the Hertz–Mindlin contact
+// law with the options' particle types, bond materials, time step and threads.
+dem::EngineConfig compression_engine_config(const UniaxialCompressionOptions& options);
+
 // The curve as columns (curve.csv, Python's result.curve): step, time, displacement, strain,
 // force, stress, kinetic_energy, strain_energy, broken_bonds.
 Columns curve_columns(const std::vector<UniaxialCompressionPoint>& curve);
