@@ -4,13 +4,13 @@
 # static solver, k_n = 100 N/m) of each, as examples/bd/time_series.sh does for central bonds.
 # Writes OUTDIR/$CSV with a first column bond_slip_force_N (copied to docs/data/ by hand).
 # usage: examples/bd/slip_scan.sh OUTDIR [PACKLAB]
-#   env: N (1000), FORCES ("1e-12 3e-12 1e-11 3e-11": F_s in N), T0 ("2": the time at 0 mV in
+#   env: N (1000), FORCES ("1e-12 3e-12 1e-11": F_s in N), T0 ("2": the time at 0 mV in
 #        a^2/D_0), T15 ("6"), SEEDS ("1"), THREADS (1), CSV (bd_slip_scan.csv)
 set -euo pipefail
 OUT=${1:?usage: slip_scan.sh OUTDIR [PACKLAB]}
 B=${2:-packlab}
 HERE=$(cd "$(dirname "$0")" && pwd)
-FORCES=${FORCES:-"1e-12 3e-12 1e-11 3e-11"}
+FORCES=${FORCES:-"1e-12 3e-12 1e-11"}
 csv="$OUT/${CSV:-bd_slip_scan.csv}"
 mkdir -p "$OUT"
 header=""

@@ -92,6 +92,14 @@ def test_figures(tmp_path):
     table.write_text("a,storage_modulus,std,label\n" + "".join(f"{x},{y},{0.1 * y},this work\n" for x, y in zip(a, g)))
     packlab.plot.save(packlab.plot.storage_modulus.figure(table), tmp_path / "g.png")
     assert (tmp_path / "g.png").stat().st_size > 1000
+    # Fit over several labels ("A|B", e.g. VEM and BD points together): the two A points alone
+    # give no fit, A and B together the eq. 7 parameters of all six.
+    table.write_text("a,storage_modulus,std,label\n" + "".join(
+        f"{x},{y},{0.1 * y},{'A' if k < 2 else 'B'}\n" for k, (x, y) in enumerate(zip(a, g))))
+    fit_lines = lambda fig: [t.get_text() for t in fig.axes[0].get_legend().get_texts() if t.get_text().startswith("fit")]
+    assert fit_lines(packlab.plot.storage_modulus.figure(table, fit_label="A")) == []
+    [both] = fit_lines(packlab.plot.storage_modulus.figure(table, fit_label="A|B"))
+    assert f"$a_0$ = {f['a0']:.3f}" in both
 
 
 def test_static_solver_gives_the_closed_form_through_the_same_call():

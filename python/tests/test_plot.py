@@ -48,7 +48,10 @@ def test_bd_table2_figures_from_tables(tmp_path):
     (tmp_path / "fig5.csv").write_text(
         "# HO = a, HE = b\nk_n_N_per_m,G_HO_Pa,G_HO_std_Pa,G_HE_Pa,G_HE_std_Pa,ratio_HE_HO\n"
         "50,1.7e6,2e4,1.7e6,3e4,0.97\n100,3.5e6,4e4,3.4e6,6e4,0.97\n")
-    for which in ("time", "fig5"):
+    (tmp_path / "coordination.csv").write_text(
+        "surface_potential_mV,time_diffusion_times,mean_coordination_bonds\n"
+        "0,0,0\n0,0.02,3.7\n0,0.05,4.7\n12,0,0\n12,0.1,4.7\n12,0.2,5.4\n")
+    for which in ("time", "fig5", "coordination"):
         fig = bd_table2.figure(which, tmp_path / f"{which}.csv")
         packlab.plot.save(fig, tmp_path / f"{which}.png")
         assert (tmp_path / f"{which}.png").stat().st_size > 1000

@@ -1,13 +1,15 @@
 """Table 2's BD rows at the paper's size (docs/bd.md): ``time`` (DOH parameter a, coordination
 C and G'_p of the N = 8000 gels against the time simulated, from ``examples/bd/time_series.sh``,
-with the paper's values of the 0 and 15 mV structures) and ``fig5`` (G'_p of the least and the
-most heterogeneous structure against the particle normal stiffness k_n, the paper's Fig. 5, from
-``examples/bd/fig5.sh``)."""
+with the paper's values), ``fig5`` (G'_p of the least and the most heterogeneous structure
+against the particle normal stiffness k_n, the paper's Fig. 5, from ``examples/bd/fig5.sh``) and
+``coordination`` (2 bonds / N against the time for every potential, with the paper's C, from
+``examples/bd/coordination_series.sh``)."""
 
 from packlab.plot._common import UsageError, argument, read_csv, run, subplots
 
 # doh-elastic-properties Table 2, BD rows: psi_0 [mV] -> (a, C, G'_p [MPa], its SD).
-PAPER = {0: (0.373, 4.52, 0.480, 0.049), 15: (0.536, 4.97, 1.62, 0.213)}
+PAPER = {0: (0.373, 4.52, 0.480, 0.049), 12: (0.404, 4.84, 1.19, 0.141), 13: (0.410, 4.75, 1.05, 0.124),
+         14: (0.472, 5.08, 1.46, 0.120), 15: (0.536, 4.97, 1.62, 0.213)}
 
 
 def time_figure(csv_path):
@@ -52,12 +54,33 @@ def fig5_figure(csv_path):
     return fig
 
 
+def coordination_figure(csv_path):
+    data = read_csv(csv_path)
+    fig, ax = subplots()
+    for k, mv in enumerate(sorted(set(data["surface_potential_mV"]))):
+        rows = [i for i, p in enumerate(data["surface_potential_mV"]) if p == mv and data["time_diffusion_times"][i] > 0]
+        rows.sort(key=lambda i: data["time_diffusion_times"][i])
+        ax.plot([data["time_diffusion_times"][i] for i in rows], [data["mean_coordination_bonds"][i] for i in rows],
+                f"C{k}-", label=f"{mv:g} mV")
+        paper = PAPER.get(int(round(mv)))
+        if paper:
+            ax.axhline(paper[1], color=f"C{k}", ls="--", lw=0.8)
+    ax.set_xscale("log")
+    ax.set_xlabel("time simulated t D_0 / a^2")
+    ax.set_ylabel("2 bonds / N")
+    ax.set_title("BD gels, N = 8000, central bonds, seed 1 (dashed: paper's C)")
+    ax.legend(fontsize=7)
+    return fig
+
+
 def figure(which, csv_path):
     if which == "time":
         return time_figure(csv_path)
     if which == "fig5":
         return fig5_figure(csv_path)
-    raise UsageError(f"unknown figure '{which}' (time, fig5)")
+    if which == "coordination":
+        return coordination_figure(csv_path)
+    raise UsageError(f"unknown figure '{which}' (time, fig5, coordination)")
 
 
 def main(argv):

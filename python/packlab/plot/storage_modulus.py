@@ -1,7 +1,8 @@
 """Storage modulus against the degree of heterogeneity (doh-elastic-properties Fig. 6) with the
 power law G' = C (a - a0)^beta (eq. 7). The CSV has columns ``a``, ``storage_modulus`` [Pa],
 ``std`` [Pa] and optionally ``label`` (points with the same label share a marker, e.g. "this
-work" and "paper"); the fit uses the rows whose label is ``--fit-label`` (all when not given)."""
+work" and "paper"); the fit uses the rows whose label is ``--fit-label`` (all when not given;
+several labels separated by ``|``)."""
 
 import numpy as np
 
@@ -32,7 +33,8 @@ def figure(table_csv, fit_label=None):
         m = np.array([lab == name for lab in labels])
         ax.errorbar(data["a"][m], data["storage_modulus"][m] / 1e6, yerr=data["std"][m] / 1e6, fmt=markers[k % 4],
                     mfc="none", capsize=3, label=name)
-    m = np.array([fit_label is None or lab == fit_label for lab in labels])
+    fitted = None if fit_label is None else fit_label.split("|")
+    m = np.array([fitted is None or lab in fitted for lab in labels])
     if m.sum() >= 3:
         f = fit_power_law(data["a"][m], data["storage_modulus"][m])
         x = np.linspace(f["a0"] + 1e-4, max(data["a"]) * 1.02, 300)

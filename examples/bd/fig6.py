@@ -1,0 +1,88 @@
+"""docs/bd.md "Fig. 6 with both structure sets": G'_p against the DOH parameter a of the VEM
+structures (docs/shear.md, N_S = 8000) and of the BD gels (N = 8000, central bonds), each BD
+potential at the time whose mean C over the seeds is nearest the paper's C (Table 2), with
+the paper's eleven structures; the eq. 7 fit G' = C (a - a0)^beta over our eleven points, over
+each set alone, and over the paper's eleven (the same fit, packlab.plot.storage_modulus).
+
+usage: /usr/bin/python3 examples/bd/fig6.py BD_SEEDS_CSV VEM_CSV OUT_TABLE_CSV OUT_FIT_CSV
+  (docs/data/bd_seeds_ns8000.csv docs/data/shear_table2_ns8000.csv docs/data/bd_fig6_ns8000.csv
+   docs/data/bd_fig6_fit_ns8000.csv; docs/figures/make-bd-figures.sh draws the figure)
+"""
+
+import statistics
+import sys
+
+from packlab.plot.storage_modulus import fit_power_law
+from packlab.tables import read_table
+
+# doh-elastic-properties Table 2: psi_0 [mV] or N_V -> (a, C, G'_p [Pa], SD over six orientations [Pa]).
+PAPER_BD = {0: (0.373, 4.52, 0.480e6, 0.049e6), 12: (0.404, 4.84, 1.19e6, 0.141e6), 13: (0.410, 4.75, 1.05e6, 0.124e6),
+            14: (0.472, 5.08, 1.46e6, 0.120e6), 15: (0.536, 4.97, 1.62e6, 0.213e6)}
+PAPER_VEM = {1000: (0.594, 4.68, 1.73e6, 0.383e6), 2000: (0.521, 4.71, 1.83e6, 0.136e6),
+             4000: (0.467, 4.69, 1.62e6, 0.190e6), 8000: (0.418, 4.69, 1.32e6, 0.237e6),
+             13000: (0.399, 4.69, 1.32e6, 0.267e6), 16000: (0.392, 4.61, 1.17e6, 0.231e6)}
+OURS_VEM, OURS_BD = "this work: VEM (N_S = 8000)", "this work: BD (N = 8000; C as the paper's)"
+PAPER_VEM_LABEL, PAPER_BD_LABEL = "paper: VEM", "paper: BD"
+
+
+def bd_rows(seeds_csv):
+    """Per potential, the seed means at the time whose mean C is nearest the paper's."""
+    t = read_table(seeds_csv)
+    groups = {}
+    for k, mv in enumerate(t["surface_potential_mV"]):
+        groups.setdefault((int(round(mv)), round(float(t["time_diffusion_times"][k]), 6)), []).append(k)
+    rows = []
+    for mv in sorted({mv for mv, _ in groups}):
+        if mv not in PAPER_BD:
+            continue
+        times = [(time, idx) for (m, time), idx in groups.items() if m == mv]
+        time, idx = min(times, key=lambda ti: abs(statistics.mean(t["C"][k] for k in ti[1]) - PAPER_BD[mv][1]))
+        mean = lambda name: statistics.mean(float(t[name][k]) for k in idx)
+        rows.append({"set": "BD", "source": OURS_BD, "structure": f"{mv} mV at t = {time:g} a^2/D_0 ({len(idx)} seeds)",
+                     "a": mean("a"), "C": mean("C"), "storage_modulus": mean("storage_modulus_Pa"),
+                     "std": mean("storage_modulus_std_Pa")})
+    return rows
+
+
+def vem_rows(vem_csv):
+    t = read_table(vem_csv)
+    return [{"set": "VEM", "source": OURS_VEM, "structure": f"N_V = {int(t['voids'][k])}", "a": t["a"][k],
+             "C": t["coordination"][k], "storage_modulus": t["storage_modulus"][k], "std": t["std"][k]}
+            for k in range(len(t["a"]))]
+
+
+def paper_rows():
+    rows = [{"set": "VEM", "source": PAPER_VEM_LABEL, "structure": f"N_V = {nv}", "a": v[0], "C": v[1],
+             "storage_modulus": v[2], "std": v[3]} for nv, v in PAPER_VEM.items()]
+    rows += [{"set": "BD", "source": PAPER_BD_LABEL, "structure": f"{mv} mV", "a": v[0], "C": v[1],
+              "storage_modulus": v[2], "std": v[3]} for mv, v in PAPER_BD.items()]
+    return rows
+
+
+def main(seeds_csv, vem_csv, table_out, fit_out):
+    rows = vem_rows(vem_csv) + bd_rows(seeds_csv) + paper_rows()
+    with open(table_out, "w") as f:
+        f.write("# examples/bd/fig6.py: Fig. 6 with both structure sets (docs/bd.md); G' and its SD over the six "
+                "orientations in Pa; BD rows: means over the seeds\n")
+        f.write("label,set,structure,a,coordination,storage_modulus,std\n")
+        for r in rows:
+            f.write(f"{r['source']},{r['set']},{r['structure']},{r['a']:.6g},{r['C']:.6g},"
+                    f"{r['storage_modulus']:.6g},{r['std']:.6g}\n")
+    fits = [("this work: VEM + BD", [OURS_VEM, OURS_BD]), ("this work: VEM", [OURS_VEM]),
+            ("this work: BD", [OURS_BD]), ("paper: VEM + BD", [PAPER_VEM_LABEL, PAPER_BD_LABEL]),
+            ("paper: VEM", [PAPER_VEM_LABEL]), ("paper: BD", [PAPER_BD_LABEL])]
+    with open(fit_out, "w") as f:
+        f.write("# examples/bd/fig6.py: eq. 7 fit G' = prefactor (a - a0)^beta (packlab.plot.storage_modulus)\n")
+        f.write("data,points,a0,beta,prefactor_Pa\n")
+        for name, sources in fits:
+            sel = [r for r in rows if r["source"] in sources]
+            fit = fit_power_law([r["a"] for r in sel], [r["storage_modulus"] for r in sel])
+            f.write(f"{name},{len(sel)},{fit['a0']:.4f},{fit['beta']:.3f},{fit['prefactor']:.4g}\n")
+    print(open(table_out).read())
+    print(open(fit_out).read())
+
+
+if __name__ == "__main__":
+    if len(sys.argv) != 5:
+        sys.exit(__doc__)
+    main(*sys.argv[1:])
