@@ -6,7 +6,7 @@
 # time and gives a, C and G' (six orientations, static solver, k_n = 100 N/m).
 # Writes OUTDIR/$CSV: bond_slip_force_N, then the columns of table2_small.sh.
 # usage: examples/bd/slip_matched.sh OUTDIR [PACKLAB]
-#   env: N (1000), FORCES ("0 1e-12 2e-12"), D0 (1) and D15 (12): the long runs' durations in
+#   env: N (1000), FORCES ("0 3e-13 1e-12"), D0 (1) and D15 (12): the long runs' durations in
 #        a^2/D_0, SEED (1), CSV (bd_slip_matched.csv)
 set -euo pipefail
 OUT=${1:?usage: slip_matched.sh OUTDIR [PACKLAB]}
@@ -17,7 +17,7 @@ SEED=${SEED:-1}
 mkdir -p "$OUT"
 header=""
 rows=""
-for force in ${FORCES:-"0 1e-12 2e-12"}; do
+for force in ${FORCES:-"0 3e-13 1e-12"}; do
   bonds=$([ "$force" = 0 ] && echo "--central-bonds" || echo "--bond-slip-force $force")
   for mv in 0 15; do
     long="$OUT/fs${force}_long$mv"
