@@ -12,6 +12,7 @@
 set -euo pipefail
 OUT=${1:?usage: coordination_series.sh OUTDIR [PACKLAB]}
 B=${2:-packlab}
+HERE=$(cd "$(dirname "$0")" && pwd)
 mkdir -p "$OUT"
 run() {  # mV duration samples
   [ -f "$OUT/c$1/report.json" ] ||
@@ -23,19 +24,18 @@ run 12 0.5 250
 run 13 1.5 300
 run 14 3 300
 run 15 6 200
-/usr/bin/python3 - "$OUT" <<'PY'
-import csv, sys
+PYTHONPATH="$HERE/../../python${PYTHONPATH:+:$PYTHONPATH}" /usr/bin/python3 - "$OUT" <<'PY'
+import sys
+from packlab.plot.bd_table2 import PAPER, crossing_time, read_coordination_log
 out = sys.argv[1]
-paper_c = {0: 4.52, 12: 4.84, 13: 4.75, 14: 5.08, 15: 4.97}  # doh-elastic-properties Table 2, BD rows
 with open(f"{out}/bd_coordination_ns8000.csv", "w") as series, open(f"{out}/bd_c_matched_times.csv", "w") as times:
     series.write("surface_potential_mV,time_diffusion_times,mean_coordination_bonds\n")
     times.write("surface_potential_mV,paper_C,time_diffusion_times\n")
-    for mv, target in paper_c.items():
-        log = [(float(r["reduced_time"]), float(r["mean_coordination"])) for r in csv.DictReader(open(f"{out}/c{mv}/bd_log.csv"))]
+    for mv, (_, target, _, _) in PAPER.items():  # the paper's C
+        log = read_coordination_log(f"{out}/c{mv}/bd_log.csv")
         for t, c in log:
             series.write(f"{mv},{t:g},{c:g}\n")
-        crossing = next(((t0 + (target - c0) / (c1 - c0) * (t1 - t0)) for (t0, c0), (t1, c1) in zip(log, log[1:])
-                         if c0 < target <= c1), float("nan"))
-        times.write(f"{mv},{target},{crossing:.4g}\n")
+        crossing = crossing_time(log, target)
+        times.write(f"{mv},{target},{float('nan') if crossing is None else crossing:.4g}\n")
 print(open(f"{out}/bd_c_matched_times.csv").read())
 PY

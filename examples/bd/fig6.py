@@ -12,12 +12,13 @@ usage: /usr/bin/python3 examples/bd/fig6.py BD_SEEDS_CSV VEM_CSV OUT_TABLE_CSV O
 import statistics
 import sys
 
+from packlab.plot.bd_table2 import PAPER
 from packlab.plot.storage_modulus import fit_power_law
 from packlab.tables import read_table
 
-# doh-elastic-properties Table 2: psi_0 [mV] or N_V -> (a, C, G'_p [Pa], SD over six orientations [Pa]).
-PAPER_BD = {0: (0.373, 4.52, 0.480e6, 0.049e6), 12: (0.404, 4.84, 1.19e6, 0.141e6), 13: (0.410, 4.75, 1.05e6, 0.124e6),
-            14: (0.472, 5.08, 1.46e6, 0.120e6), 15: (0.536, 4.97, 1.62e6, 0.213e6)}
+# doh-elastic-properties Table 2: psi_0 [mV] or N_V -> (a, C, G'_p [Pa], SD over six orientations [Pa]);
+# the BD rows are packlab.plot.bd_table2's (G'_p in MPa there).
+PAPER_BD = {mv: (a, c, g * 1e6, sd * 1e6) for mv, (a, c, g, sd) in PAPER.items()}
 PAPER_VEM = {1000: (0.594, 4.68, 1.73e6, 0.383e6), 2000: (0.521, 4.71, 1.83e6, 0.136e6),
              4000: (0.467, 4.69, 1.62e6, 0.190e6), 8000: (0.418, 4.69, 1.32e6, 0.237e6),
              13000: (0.399, 4.69, 1.32e6, 0.267e6), 16000: (0.392, 4.61, 1.17e6, 0.231e6)}

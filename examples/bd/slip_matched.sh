@@ -25,19 +25,16 @@ for force in ${FORCES:-"0 3e-13 1e-12"}; do
     [ -f "$long/report.json" ] ||
       "$B" generate bd --particles "$N" --phi 0.4 --surface-potential "${mv}e-3" --duration "$duration" $bonds \
         --seed "$SEED" --samples 400 --quiet --no-plots --out "$long"
-    target=$([ "$mv" = 0 ] && echo 4.52 || echo 4.97)  # doh-elastic-properties Table 2, BD rows
-    t=$(/usr/bin/python3 - "$long/bd_log.csv" "$target" <<'PY'
-import csv, sys
-log = [(float(r["reduced_time"]), float(r["mean_coordination"])) for r in csv.DictReader(open(sys.argv[1]))]
-target = float(sys.argv[2])
-for (t0, c0), (t1, c1) in zip(log, log[1:]):
-    if c0 < target <= c1:
-        print(f"{t0 + (target - c0) / (c1 - c0) * (t1 - t0):.4g}")
-        break
-else:
-    print("none")
+    # the paper's C (doh-elastic-properties Table 2, BD rows) and the time the log reaches it
+    tc=$(PYTHONPATH="$HERE/../../python${PYTHONPATH:+:$PYTHONPATH}" /usr/bin/python3 - "$long/bd_log.csv" "$mv" <<'PY'
+import sys
+from packlab.plot.bd_table2 import PAPER, crossing_time
+target = PAPER[int(sys.argv[2])][1]
+t = crossing_time(sys.argv[1], target)
+print(target, "none" if t is None else f"{t:.4g}")
 PY
 )
+    target=${tc% *} t=${tc#* }
     if [ "$t" = none ]; then
       echo "F_s = $force N, $mv mV: C stays below $target within $duration a^2/D_0" >&2
       continue

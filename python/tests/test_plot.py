@@ -1,6 +1,7 @@
 """packlab.plot figures from tables written by Python (packlab.write_table)."""
 
 import matplotlib
+import pytest
 
 matplotlib.use("Agg")
 
@@ -57,3 +58,31 @@ def test_bd_table2_figures_from_tables(tmp_path):
         assert (tmp_path / f"{which}.png").stat().st_size > 1000
     fig = bd_table2.figure("fig5", tmp_path / "fig5.csv")
     assert "0.97" in fig.axes[0].get_title()
+
+
+def test_bd_table2_crossing_time(tmp_path):
+    # The time a BD log's 2 bonds / N first reaches the paper's C (examples/bd/coordination_series.sh,
+    # slip_matched.sh): linear interpolation between the two log rows that bracket it.
+    from packlab.plot.bd_table2 import PAPER, crossing_time
+
+    rows = [(0.0, 0.0), (0.5, 2.0), (1.0, 4.0), (1.5, 5.0), (2.0, 6.0)]
+    assert crossing_time(rows, 4.5) == pytest.approx(1.25)
+    assert crossing_time(rows, 3.0) == pytest.approx(0.75)
+    # the crossing exactly on a row: that row's time (c0 < target <= c1), not the next pair's start
+    assert crossing_time(rows, 4.0) == pytest.approx(1.0)
+    assert crossing_time([(0.0, 0.0), (0.25, 1.0), (0.75, 3.0)], 3.0) == 0.75
+    # never reaching the target, a log that starts at it, or one that only falls through it: None
+    assert crossing_time(rows, 6.5) is None
+    assert crossing_time([(0.0, 4.5), (1.0, 5.0)], 4.5) is None
+    assert crossing_time([(0.0, 5.0), (1.0, 4.0)], 4.5) is None
+    assert crossing_time([], 4.5) is None and crossing_time([(0.0, 1.0)], 1.0) is None
+    # only the first upward crossing counts
+    assert crossing_time([(0.0, 0.0), (1.0, 5.0), (2.0, 4.0), (3.0, 6.0)], 4.5) == pytest.approx(0.9)
+    # a bd_log.csv file (path or str), with the target from the paper's table
+    log = tmp_path / "bd_log.csv"
+    log.write_text("step,time_s,reduced_time,bonds,mean_coordination,clusters,largest_cluster,msd_m2\n"
+                   "0,0,0,0,0,1000,1,0\n100,1e-4,0.01,2000,4,300,50,1e-15\n200,2e-4,0.02,2520,5.04,20,900,2e-15\n")
+    assert PAPER[0][1] == 4.52 and PAPER[15][1] == 4.97
+    assert crossing_time(log, PAPER[0][1]) == pytest.approx(0.015)
+    assert crossing_time(str(log), PAPER[15][1]) == pytest.approx(0.01 + 0.97 / 1.04 * 0.01)
+    assert crossing_time(log, 5.08) is None

@@ -3,13 +3,42 @@ C and G'_p of the N = 8000 gels against the time simulated, from ``examples/bd/t
 with the paper's values), ``fig5`` (G'_p of the least and the most heterogeneous structure
 against the particle normal stiffness k_n, the paper's Fig. 5, from ``examples/bd/fig5.sh``) and
 ``coordination`` (2 bonds / N against the time for every potential, with the paper's C, from
-``examples/bd/coordination_series.sh``)."""
+``examples/bd/coordination_series.sh``); the paper's values ``PAPER`` and :func:`crossing_time`
+(when a BD log's coordination reaches the paper's C), which ``examples/bd/coordination_series.sh``,
+``slip_matched.sh`` and ``fig6.py`` use."""
+
+import csv
+import os
 
 from packlab.plot._common import UsageError, argument, read_csv, run, subplots
 
 # doh-elastic-properties Table 2, BD rows: psi_0 [mV] -> (a, C, G'_p [MPa], its SD).
 PAPER = {0: (0.373, 4.52, 0.480, 0.049), 12: (0.404, 4.84, 1.19, 0.141), 13: (0.410, 4.75, 1.05, 0.124),
          14: (0.472, 5.08, 1.46, 0.120), 15: (0.536, 4.97, 1.62, 0.213)}
+
+
+def read_coordination_log(path):
+    """The rows ``(reduced_time, mean_coordination)`` of a BD log ``bd_log.csv`` (time in a^2/D_0,
+    2 bonds / N), in the file's order."""
+    with open(path, newline="") as f:
+        return [(float(r["reduced_time"]), float(r["mean_coordination"])) for r in csv.DictReader(f)]
+
+
+def crossing_time(log, target):
+    """The time at which the coordination of a BD log first reaches ``target`` (the paper's C).
+
+    ``log`` is the path of a ``bd_log.csv`` (see :func:`read_coordination_log`) or a sequence of
+    ``(time, coordination)`` rows in time order. The rule: the first pair of consecutive rows
+    ``(t0, c0), (t1, c1)`` with ``c0 < target <= c1`` gives ``t0 + (target - c0) / (c1 - c0) *
+    (t1 - t0)`` (linear interpolation between the two rows; a row that equals ``target`` after a
+    row below it gives that row's time; the first row alone never counts, nor a fall through
+    ``target``). Returns None when no pair crosses (the coordination stays below ``target``, or
+    starts at or above it and never rises through it again)."""
+    rows = read_coordination_log(log) if isinstance(log, (str, os.PathLike)) else list(log)
+    for (t0, c0), (t1, c1) in zip(rows, rows[1:]):
+        if c0 < target <= c1:
+            return t0 + (target - c0) / (c1 - c0) * (t1 - t0)
+    return None
 
 
 def time_figure(csv_path):
