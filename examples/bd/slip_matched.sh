@@ -17,7 +17,7 @@ SEED=${SEED:-1}
 mkdir -p "$OUT"
 header=""
 rows=""
-for force in ${FORCES:-"0 3e-13 1e-12"}; do
+for force in ${FORCES:-0 3e-13 1e-12}; do
   bonds=$([ "$force" = 0 ] && echo "--central-bonds" || echo "--bond-slip-force $force")
   for mv in 0 15; do
     long="$OUT/fs${force}_long$mv"
