@@ -9,6 +9,7 @@ import sys
 
 import packlab
 import packlab.plot
+import packlab.reproduction
 
 if packlab._core_error is not None:
     sys.exit(f"make-python-reference: packlab._core is not importable: {packlab._core_error}")
@@ -57,6 +58,9 @@ def main(out):
     lines += ["## Module `packlab.reference`", ""]
     for n in sorted(x for x in dir(core.reference) if not x.startswith("_")):
         lines += entry(f"packlab.reference.{n}", getattr(core.reference, n))
+    lines += ["## Module `packlab.reproduction`", "", doc(packlab.reproduction), ""]
+    for n in ["collect", "within", "render", "bd_at_paper_c"]:
+        lines += entry(f"packlab.reproduction.{n}", getattr(packlab.reproduction, n))
     lines += ["## Figures (`packlab.plot`)", "", doc(packlab.plot), ""]
     import importlib
     import pkgutil

@@ -14,32 +14,24 @@ import sys
 
 from packlab.plot.bd_table2 import PAPER
 from packlab.plot.storage_modulus import fit_power_law
+from packlab.reproduction import DOH_TABLE2_VEM, bd_at_paper_c
 from packlab.tables import read_table
 
-# doh-elastic-properties Table 2: psi_0 [mV] or N_V -> (a, C, G'_p [Pa], SD over six orientations [Pa]);
-# the BD rows are packlab.plot.bd_table2's (G'_p in MPa there).
+# doh-elastic-properties Table 2: psi_0 [mV] or N_V -> (a, C, G'_p [Pa], SD over six orientations [Pa]),
+# from packlab.plot.bd_table2 and packlab.reproduction (G'_p in MPa there).
 PAPER_BD = {mv: (a, c, g * 1e6, sd * 1e6) for mv, (a, c, g, sd) in PAPER.items()}
-PAPER_VEM = {1000: (0.594, 4.68, 1.73e6, 0.383e6), 2000: (0.521, 4.71, 1.83e6, 0.136e6),
-             4000: (0.467, 4.69, 1.62e6, 0.190e6), 8000: (0.418, 4.69, 1.32e6, 0.237e6),
-             13000: (0.399, 4.69, 1.32e6, 0.267e6), 16000: (0.392, 4.61, 1.17e6, 0.231e6)}
+PAPER_VEM = {nv: (a, c, g * 1e6, sd * 1e6) for nv, (a, c, g, sd) in DOH_TABLE2_VEM.items()}
 OURS_VEM, OURS_BD = "this work: VEM (N_S = 8000)", "this work: BD (N = 8000; C as the paper's)"
 PAPER_VEM_LABEL, PAPER_BD_LABEL = "paper: VEM", "paper: BD"
 
 
 def bd_rows(seeds_csv):
-    """Per potential, the seed means at the time whose mean C is nearest the paper's."""
-    t = read_table(seeds_csv)
-    groups = {}
-    for k, mv in enumerate(t["surface_potential_mV"]):
-        groups.setdefault((int(round(mv)), round(float(t["time_diffusion_times"][k]), 6)), []).append(k)
+    """Per potential, the seed means at the time whose mean C is nearest the paper's
+    (packlab.reproduction.bd_at_paper_c)."""
     rows = []
-    for mv in sorted({mv for mv, _ in groups}):
-        if mv not in PAPER_BD:
-            continue
-        times = [(time, idx) for (m, time), idx in groups.items() if m == mv]
-        time, idx = min(times, key=lambda ti: abs(statistics.mean(t["C"][k] for k in ti[1]) - PAPER_BD[mv][1]))
-        mean = lambda name: statistics.mean(float(t[name][k]) for k in idx)
-        rows.append({"set": "BD", "source": OURS_BD, "structure": f"{mv} mV at t = {time:g} a^2/D_0 ({len(idx)} seeds)",
+    for mv, (time, chosen) in bd_at_paper_c(seeds_csv).items():
+        mean = lambda name: statistics.mean(float(r[name]) for r in chosen)
+        rows.append({"set": "BD", "source": OURS_BD, "structure": f"{mv} mV at t = {time:g} a^2/D_0 ({len(chosen)} seeds)",
                      "a": mean("a"), "C": mean("C"), "storage_modulus": mean("storage_modulus_Pa"),
                      "std": mean("storage_modulus_std_Pa")})
     return rows

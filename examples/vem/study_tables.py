@@ -9,7 +9,10 @@ OUT is the folder of examples/vem/study.sh: one study folder per group (OUT/GROU
 docs/study.md); the runs keep the names of the script before the studies (n025, phi02,
 stiffness_kns1e3_knv1e1, ...). A folder of that older layout (OUT/NAME/report.json) is read too.
 
-usage: study_tables.py OUT [DATA]   (DATA defaults to docs/data of this checkout)"""
+usage: study_tables.py OUT [DATA] [TABLE]   (DATA defaults to docs/data of this checkout; TABLE,
+default vem_study, names the tables DATA/TABLE.csv and, for another name than the default,
+DATA/TABLE_curves.csv: `study_tables.py OUT/relax docs/data vem_relax_study` keeps the relaxation
+study of docs/reproduction.md apart)"""
 
 import csv
 import json
@@ -23,6 +26,8 @@ def main(argv):
     out = argv[1] if len(argv) > 1 else "vem-study"
     here = os.path.dirname(os.path.abspath(__file__))
     data = argv[2] if len(argv) > 2 else os.path.join(here, "..", "..", "docs", "data")
+    table = argv[3] if len(argv) > 3 else "vem_study"
+    curves_table = "vem_curves" if table == "vem_study" else f"{table}_curves"
     os.makedirs(data, exist_ok=True)
     folders = study_runs(out)
     folders.update({d: os.path.join(out, d) for d in os.listdir(out) if os.path.isfile(os.path.join(out, d, "report.json"))})
@@ -52,6 +57,10 @@ def main(argv):
             "beta_r2": f"{r['beta_r2']:.6g}", "cycles": r["cycles"], "steps": r["steps"],
             "seconds": f"{r['seconds']:.4g}", "threads": r["threads"], "stop": r["stop_reason"],
         })
+        relax = p.get("relax", {})
+        if table != "vem_study":  # the relaxation per increment (vem_study.csv predates these columns)
+            study_rows[-1].update({"relax_tolerance": relax.get("tolerance", ""), "relax_overlap": relax.get("overlap", ""),
+                                   "relax_max_steps": relax.get("max_steps", "")})
         with open(os.path.join(folders[name], "cn_curve.csv")) as f:
             lines = [line for line in f if not line.startswith("#")]
         q, cn = [], []
@@ -63,15 +72,15 @@ def main(argv):
         # The paper writes the slope as a difference quotient dCN/dq|_i; on a curve sampled
         # every 0.2 in q (every 40th row) the largest one is (docs/vem.md, "slope").
         study_rows[-1]["slope_dq02_n13"] = f"{largest_difference_quotient(q, cn, 0.2) * n ** (1 / 3):.4g}"
-    write(os.path.join(data, "vem_study.csv"), study_rows,
+    write(os.path.join(data, f"{table}.csv"), study_rows,
           "examples/vem/study.sh runs (examples/vem/study_tables.py); q_i_unc, slope_unc = "
           "sqrt(fit error^2 + window change^2); kn_ratio = k_n,V / k_n,S; seconds = wall time")
-    write(os.path.join(data, "vem_curves.csv"), curve_rows,
+    write(os.path.join(data, f"{curves_table}.csv"), curve_rows,
           "CN(q) curves of examples/vem/study.sh (examples/vem/study_tables.py)")
-    if "fig1" in folders:
+    if "fig1" in folders and table == "vem_study":
         shutil.copyfile(os.path.join(folders["fig1"], "cn_curve.csv"), os.path.join(data, "vem_fig1_cn_curve.csv"))
         shutil.copyfile(os.path.join(folders["fig1"], "report.json"), os.path.join(data, "vem_fig1_report.json"))
-    print(f"{len(study_rows)} runs -> {data}/vem_study.csv, vem_curves.csv ({len(curve_rows)} rows)")
+    print(f"{len(study_rows)} runs -> {data}/{table}.csv, {curves_table}.csv ({len(curve_rows)} rows)")
     return 0
 
 
@@ -89,6 +98,10 @@ def run_name(group, row):
         return "phi" + row["phi-s"].replace(".", "")
     if group == "mass":
         return "n050_mass025"
+    if group == "relax_n":
+        return f"n{int(row['voids']) // 10:03d}_relax00050_seed{row['seed']}"
+    if group == "relax":
+        return f"n050_relax{int(row['relax-max-steps']):05d}_seed{row['seed']}"
     if group == "stiffness":
         return f"stiffness_kns1e3_knv{row['knv']}"
     return group  # fig1

@@ -118,7 +118,7 @@ TEST(Vem, StructuralCoordinationCountsStructuralPairsWithinOnePercentGap) {
   p.add({2, 2, 2}, r);
   p.add({2 + 2 * r * 1.009, 2, 2}, r);  // gap 0.9 % of 2 r_S: a contact
   p.add({10, 10, 10}, r);
-  p.add({10 + 2 * r * 1.011, 10, 10}, r);  // gap 1.1 %: not a contact
+  p.add({10 + 2 * r * 1.011, 10, 10}, r);                     // gap 1.1 %: not a contact
   p.add({2, 2 + 2 * r, 2}, r, particle_type::void_particle);  // touching a structural particle: ignored
   p.add({10, 10 + 1.5 * r, 10}, 0.5 * r, particle_type::void_particle);
   EXPECT_DOUBLE_EQ(structural_coordination(p, 0.01), 2.0 / 4.0);
@@ -177,6 +177,39 @@ TEST(Vem, CheckpointResumeEqualsUninterruptedRun) {
   EXPECT_TRUE(third->engine().particles().position == straight.engine().particles().position);
   EXPECT_TRUE(third->engine().particles().velocity == straight.engine().particles().velocity);
   EXPECT_EQ(third->engine().time(), straight.engine().time());
+}
+
+// stop.min_coordination: stage III ends the run only once CN has reached the minimum as well;
+// until then the run is the same trajectory as without it, and a minimum below the stage III
+// coordination changes nothing.
+TEST(Vem, StageThreeStopWaitsForTheMinimumCoordination) {
+  VemParams p = tiny();
+  p.max_q = 2.0;
+  Vem plain(p);
+  plain.run();
+  ASSERT_EQ(plain.stop_reason(), VemStop::stage_three);
+  const std::vector<VemRow>& rows = plain.curve();
+  const double end_cn = rows.back().cn;
+  const double scale = static_cast<double>(p.structural) * p.structural_material.normal_stiffness * p.radius * p.radius;
+
+  p.stop_min_coordination = end_cn + 0.05;
+  Vem longer(p);
+  longer.run();
+  const std::vector<VemRow>& more = longer.curve();
+  ASSERT_GT(more.size(), rows.size());
+  EXPECT_TRUE(same_rows(std::vector<VemRow>(more.begin(), more.begin() + static_cast<long>(rows.size())), rows));
+  ASSERT_EQ(longer.stop_reason(), VemStop::stage_three) << "the tiny run reached max_q first";
+  EXPECT_GE(more.back().cn, p.stop_min_coordination);
+  EXPECT_GE(more.back().strain_energy / scale, p.stop_strain_energy);
+  for (std::size_t k = 0; k + 1 < more.size(); ++k)
+    EXPECT_TRUE(more[k].cn < p.stop_min_coordination || more[k].strain_energy / scale < p.stop_strain_energy)
+        << "row " << k << " met both criteria";
+
+  p.stop_min_coordination = 0.5 * end_cn;
+  Vem same(p);
+  same.run();
+  EXPECT_EQ(same.stop_reason(), VemStop::stage_three);
+  EXPECT_TRUE(same_rows(same.curve(), rows));
 }
 
 // DESIGN.md: the same seed gives the same packing whatever the thread count: a small run at
@@ -240,6 +273,8 @@ TEST(Vem, BadInputIsAnInputError) {
   bad([](VemParams& p) { p.void_material.damping = 1.0; });
   bad([](VemParams& p) { p.structural_material.normal_stiffness = -1.0; });
   bad([](VemParams& p) { p.void_mass_scaling = -1.0; });
+  bad([](VemParams& p) { p.stop_min_coordination = -1.0; });
+  bad([](VemParams& p) { p.stop_min_coordination = 13.0; });
   VemParams p = tiny();
   p.structural = 10;
   p.max_q = 3.0;  // the box (4.9 r_S) cannot hold two voids of 3 r_S

@@ -4,9 +4,12 @@
 * ``studies``: CN against q n^(1/3) for the n-study, against q for the size study, against
   Phi_T for the Phi_S-study, and q_i / slope for the three time-step settings;
 * ``stiffness``: q_i and the slope at the inflection against K_n = k_n,V / k_n,S with the
-  paper's law q_i = 0.02 ln K_n + 1.16 (K_n <= 1e-4) and its plateau (§3.4, Fig. 7-8).
+  paper's law q_i = 0.02 ln K_n + 1.16 (K_n <= 1e-4) and its plateau (§3.4, Fig. 7-8);
+* ``relax``: the relaxation study of docs/reproduction.md (``docs/data/vem_relax_study.csv``):
+  slope n^1/3, q_i n^1/3, Phi_T,i and beta against the fixed number of steps per increment at
+  n = 0.5, and slope n^1/3 and q_i n^1/3 against n at 50 steps, with the paper's values and scatter.
 
-usage: python3 -m packlab.plot vem_study studies|stiffness STUDY.csv [CURVES.csv] --out FILE.png"""
+usage: python3 -m packlab.plot vem_study studies|stiffness|relax STUDY.csv [CURVES.csv] --out FILE.png"""
 
 from packlab.plot._common import argument, read_csv, run, subplots, UsageError
 
@@ -96,8 +99,41 @@ def stiffness(study):
     return fig
 
 
+def relax(study):
+    from packlab.reproduction import PAPER_ROWS
+
+    rows = list(_rows(study).values())
+    fig, axes = subplots(2, 3, width=12, height=7, layout=None)
+    half = [r for r in rows if abs(r["n"] - 0.5) < 1e-9]
+    panels = [("slope_n13", "vem.slope_n13", "dCN/dq|_i n^1/3"), ("q_n13", "vem.q_i_n13", "q_i n^1/3"),
+              ("phi_total_i", "vem.phi_ti_over_n", "Phi_T,i"), ("beta", "vem.beta", "beta (eq. 9)")]
+    for ax, (column, key, label) in zip(axes.flat, panels):
+        ax.plot([r["relax_max_steps"] for r in half], [r[column] for r in half], "o", label="packlab, n = 0.5, seeds 1-3")
+        _paper_band(ax, PAPER_ROWS[key])
+        ax.set_xscale("log")
+        _label(ax, "steps per increment (fixed)", label, label + " against the relaxation", legend=column == "slope_n13")
+    fifty = [r for r in rows if r["relax_max_steps"] == 50]
+    for ax, (column, key, label) in zip(axes.flat[4:], panels[:2]):
+        ax.plot([r["n"] for r in fifty], [r[column] for r in fifty], "o", label="packlab, 50 steps, seeds 1-3")
+        _paper_band(ax, PAPER_ROWS[key])
+        ax.set_xscale("log")
+        _label(ax, "n = N_V / N_S", label, label + " against n at 50 steps", legend=False)
+    fig.suptitle("VEM, N_S = 1000: a fixed relaxation per increment (docs/reproduction.md)")
+    fig.tight_layout()
+    return fig
+
+
+def _paper_band(ax, paper_row):
+    value, scatter = float(paper_row[3]), float(paper_row[4] or 0.0)
+    ax.axhline(value, color="k", ls="--", lw=0.8, label=f"paper {paper_row[3]} ± {paper_row[4]}")
+    if scatter:
+        ax.axhspan(value - scatter, value + scatter, color="k", alpha=0.1)
+
+
 def _draw(kind, study_csv, curves_csv):
     study = read_csv(study_csv)
+    if kind == "relax":
+        return relax(study)
     if kind == "studies":
         if not curves_csv:
             raise UsageError("studies needs the curves table")
@@ -106,5 +142,5 @@ def _draw(kind, study_csv, curves_csv):
 
 
 def main(argv):
-    return run("vem_study", argv, _draw, argument("kind", choices=["studies", "stiffness"]), argument("study"),
+    return run("vem_study", argv, _draw, argument("kind", choices=["studies", "stiffness", "relax"]), argument("study"),
                argument("curves", nargs="?"))

@@ -18,7 +18,7 @@ namespace packlab::generate {
 
 namespace {
 
-constexpr std::uint64_t vem_checkpoint_magic = 0x3430504B434D4556ULL;  // "VEMCKP04": checksummed
+constexpr std::uint64_t vem_checkpoint_magic = 0x3530504B434D4556ULL;  // "VEMCKP05": checksummed
 constexpr int structural_type = particle_type::structural;
 constexpr int void_type = particle_type::void_particle;
 
@@ -73,6 +73,7 @@ void write_params(std::ostream& out, const VemParams& p) {
   binary::write(out, p.void_mass_scaling);
   binary::write(out, p.stop_strain_energy);
   binary::write(out, p.max_q);
+  binary::write(out, p.stop_min_coordination);
   binary::write(out, static_cast<std::int32_t>(dem::time_step_rule_from_name(p.time_step_rule)));
   binary::write(out, p.time_step_safety);
   binary::write(out, p.skin);
@@ -98,6 +99,7 @@ VemParams read_params(std::istream& in) {
   binary::read(in, p.void_mass_scaling, "void_mass_scaling");
   binary::read(in, p.stop_strain_energy, "stop strain_energy");
   binary::read(in, p.max_q, "max_q");
+  binary::read(in, p.stop_min_coordination, "stop min_coordination");
   std::int32_t rule = 0;
   binary::read(in, rule, "time_step_rule");
   if (rule < 0 || rule > static_cast<std::int32_t>(dem::TimeStepRule::stiffness_sum))
@@ -285,7 +287,7 @@ void Vem::record_row() {
   const double scale = static_cast<double>(params_.structural) * params_.structural_material.normal_stiffness *
                        params_.radius * params_.radius;
   const double next_q = static_cast<double>(cycle_ + 2) * params_.void_radius_ratio;
-  if (row.strain_energy / scale >= params_.stop_strain_energy) {
+  if (row.strain_energy / scale >= params_.stop_strain_energy && row.cn >= params_.stop_min_coordination) {
     stop_ = VemStop::stage_three;
     stage_ = VemStage::finished;
   } else if (next_q > params_.max_q * (1.0 + 1e-12)) {

@@ -186,7 +186,11 @@ ConfigSchema vem_options(generate::VemParams& p) {
               "Stage III: stop when E_strain / (N_S k_n,S r_S^2) exceeds this")
       .range(ranges::positive)
       .number("stop.max_q", p.max_q, "Stop at this q = r_V / r_S at the latest")
-      .alias("max_q");
+      .alias("max_q")
+      .number("stop.min_coordination", p.stop_min_coordination,
+              "Stage III ends the run only once the structural coordination number CN has reached this too (0 = no "
+              "minimum)")
+      .range({0.0, 12.0, false, false});
   return schema;
 }
 

@@ -1,0 +1,338 @@
+"""The reproduction table of the four papers (docs/reproduction.md): one row per headline number,
+the paper's value beside packlab's, collected from the data files under docs/data that the study
+scripts write, and rendered into docs/reproduction.md.
+
+    python3 -m packlab.reproduction collect [DATA] [--out CSV]   # DATA/*.csv -> DATA/reproduction.csv
+    python3 -m packlab.reproduction render CSV MD                # the tables between the markers of MD
+
+Columns of the CSV: key, paper, quantity, source (equation / table / figure), paper_value,
+paper_scatter (empty where the paper gives none), packlab_value, packlab_sd (SD over the
+realizations), realizations, particles, paper_particles, within, note.
+
+**The rule for ``within``** (`within`): |packlab - paper| <= sqrt(s_paper^2 + s_packlab^2), with
+s_paper the paper's stated scatter or, where it gives none, half a unit of the last digit it
+prints, and s_packlab packlab's SD over its realizations (0 for one). "yes" / "no"; "n/a" where
+packlab has no value yet; "bound" rows (the paper gives an upper bound) are "yes" when packlab's
+value lies below it."""
+
+import argparse
+import csv
+import math
+import os
+import statistics
+import sys
+
+from packlab.plot.bd_table2 import PAPER as BD_TABLE2
+from packlab.tables import atomic_output
+
+COLUMNS = ["key", "paper", "quantity", "source", "paper_value", "paper_scatter", "packlab_value", "packlab_sd",
+           "realizations", "particles", "paper_particles", "within", "note"]
+
+# doh-elastic-properties Table 2, VEM rows: N_V -> (a, C, G'_p [MPa], its SD over six orientations [MPa]).
+DOH_TABLE2_VEM = {1000: (0.594, 4.68, 1.73, 0.383), 2000: (0.521, 4.71, 1.83, 0.136), 4000: (0.467, 4.69, 1.62, 0.190),
+                  8000: (0.418, 4.69, 1.32, 0.237), 13000: (0.399, 4.69, 1.32, 0.267), 16000: (0.392, 4.61, 1.17, 0.231)}
+
+VEM, DOH = "vem-void-expansion-method", "doh-elastic-properties"
+
+
+def _paper_rows():
+    """key -> (paper, quantity, source, paper_value as printed, paper_scatter as printed, paper_particles)."""
+    rows = {
+        "vem.q_i_n13": (VEM, "q_i n^1/3 (mean over n)", "eq. 4, Fig. 2", "0.82", "0.01", "8000"),
+        "vem.slope_n13": (VEM, "dCN/dq|_i n^1/3 (mean over n)", "eq. 6, Fig. 2", "9.16", "0.68", "8000"),
+        "vem.phi_ti_over_n": (VEM, "Phi_T,i over n", "eq. 5, §3.1", "0.623", "0.009", "8000"),
+        "vem.phi_ti_over_phis": (VEM, "Phi_T,i over Phi_S = 0.2-0.55 (n = 0.5)", "eq. 5, §3.2", "0.615", "0.005", "4000"),
+        "vem.beta": (VEM, "beta of CN - CN_i = A (Phi_T - Phi_T,i)^beta", "eq. 9, Fig. 5", "0.37", "0.04", "8000"),
+        "vem.eq10_kn_1e-6": (VEM, "q_i at K_n = 1e-6 (eq. 10: 0.02 ln K_n + 1.16)", "eq. 10, Fig. 7", "0.884", "", "8000"),
+        "vem.eq10_kn_1e-5": (VEM, "q_i at K_n = 1e-5 (eq. 10)", "eq. 10, Fig. 7", "0.930", "", "8000"),
+        "vem.eq10_kn_1e-4": (VEM, "q_i at K_n = 1e-4 (eq. 10)", "eq. 10, Fig. 7", "0.976", "", "8000"),
+        "vem.plateau": (VEM, "q_i for K_n > 1e-4 (plateau)", "§3.4, Fig. 7", "1.022", "", "8000"),
+        "vem.kink_kn": (VEM, "K_n^c where eq. 10 meets the plateau", "§3.4, Fig. 7", "5.4e-4", "", "8000"),
+        "vem.eq11_slope": (VEM, "exponent b of dCN/dq|_i = A K_n^b (K_n <= 1e-4)", "eq. 11, Fig. 8", "0.2", "", "8000"),
+    }
+    for nv, (a, c, gp, sd) in DOH_TABLE2_VEM.items():
+        rows[f"doh.a_nv{nv}"] = (DOH, f"DOH parameter a, VEM N_V = {nv}", "Table 2, eq. 6", f"{a:g}", "", "8000")
+        rows[f"doh.c_nv{nv}"] = (DOH, f"coordination C, VEM N_V = {nv}", "Table 2", f"{c:g}", "", "8000")
+        rows[f"doh.gp_nv{nv}"] = (DOH, f"G'_p [MPa], VEM N_V = {nv}", "Table 2", f"{gp:g}", f"{sd:g}", "8000")
+    rows["doh.eq7_a0"] = (DOH, "a0 of G'_p = C (a - a0)^beta (VEM + BD)", "eq. 7, Fig. 6", "0.373", "0.001", "8000")
+    rows["doh.eq7_beta"] = (DOH, "beta of eq. 7 (VEM + BD)", "eq. 7, Fig. 6", "0.187", "0.032", "8000")
+    rows["doh.phase_angle"] = (DOH, "phase angle delta [rad], upper bound", "§3.1", "< 3.1e-4", "", "8000")
+    for mv, (a, c, gp, sd) in BD_TABLE2.items():
+        rows[f"doh.bd_a_psi{mv}"] = (DOH, f"DOH parameter a, BD psi_0 = {mv} mV", "Table 2, eq. 6", f"{a:g}", "", "8000")
+        rows[f"doh.bd_c_psi{mv}"] = (DOH, f"coordination C, BD psi_0 = {mv} mV", "Table 2", f"{c:g}", "", "8000")
+        rows[f"doh.bd_gp_psi{mv}"] = (DOH, f"G'_p [MPa], BD psi_0 = {mv} mV", "Table 2", f"{gp:g}", f"{sd:g}", "8000")
+    rows["doh.ratio_he_ho"] = (DOH, "G'_p(15 mV) / G'_p(0 mV)", "§3.1, Fig. 5", "3.4", "", "8000")
+    return rows
+
+
+PAPER_ROWS = _paper_rows()
+
+
+def half_last_digit(printed):
+    """Half a unit of the last digit of a number as printed ("0.884" -> 0.0005, "5.4e-4" -> 0.05e-4)."""
+    mantissa, _, exponent = printed.lower().partition("e")
+    decimals = len(mantissa.split(".")[1]) if "." in mantissa else 0
+    return 0.5 * 10.0 ** (-decimals) * 10.0 ** (int(exponent) if exponent else 0)
+
+
+def within(paper_value, paper_scatter, value, sd):
+    """The rule of the module docstring: "yes", "no" or "n/a"."""
+    if value is None or (isinstance(value, float) and math.isnan(value)):
+        return "n/a"
+    if paper_value.startswith("<"):
+        return "yes" if abs(value) < float(paper_value[1:]) else "no"
+    s_paper = float(paper_scatter) if paper_scatter else half_last_digit(paper_value)
+    # (1 + 1e-9): a difference equal to the bound in decimal is not lost to binary rounding.
+    return "yes" if abs(value - float(paper_value)) <= math.hypot(s_paper, sd or 0.0) * (1 + 1e-9) else "no"
+
+
+def read_table(path):
+    """A CSV under docs/data as a list of dicts (``#`` comment lines skipped); [] if missing."""
+    if not os.path.isfile(path):
+        return []
+    with open(path) as f:
+        return list(csv.DictReader(line for line in f if not line.startswith("#")))
+
+
+def mean_sd(values):
+    values = [float(v) for v in values]
+    if not values:
+        return None, None
+    return statistics.mean(values), (statistics.stdev(values) if len(values) > 1 else 0.0)
+
+
+def _ours(value, sd, realizations, particles, note):
+    return {"packlab_value": value, "packlab_sd": sd, "realizations": realizations, "particles": particles, "note": note}
+
+
+def vem_values(data):
+    """The VEM paper's rows: the n-series and Phi_S-series of vem_doh_ns8000.csv (paper size,
+    end point stage3) where it exists, else the reduced-size studies of vem_study.csv; the
+    stiffness series from vem_study.csv."""
+    out = {}
+    big = [r for r in read_table(os.path.join(data, "vem_doh_ns8000.csv")) if r["end"] == "stage3"]
+    study = read_table(os.path.join(data, "vem_study.csv"))
+    if big:
+        series, particles, what = big, "8000", "N_S = 8000, N_V = 1000-16000, seeds " + ", ".join(
+            sorted({r["seed"] for r in big}))
+    else:
+        names = {"n025", "n050_seed1", "n050_seed2", "n050_seed3", "n100", "n200"}
+        series, particles, what = [r for r in study if r["name"] in names], "1000", "N_S = 1000, n = 0.25-2"
+    if series:
+        k = len(series)
+        for key, column in (("vem.q_i_n13", "q_n13"), ("vem.slope_n13", "slope_n13"),
+                            ("vem.phi_ti_over_n", "phi_total_i"), ("vem.beta", "beta")):
+            m, s = mean_sd(r[column] for r in series)
+            out[key] = _ours(m, s, k, particles, f"{what}; mean and SD over the runs, as the paper's over n")
+    phis = [r for r in study if r["name"].startswith("phi") or r["name"].startswith("n050_seed")]
+    phis = [r for r in phis if r["time_step_rule"] == "stiffness_sum"]
+    if phis:
+        m, s = mean_sd(r["phi_total_i"] for r in phis)
+        out["vem.phi_ti_over_phis"] = _ours(m, s, len(phis), "1000",
+                                            "N_S = 1000, n = 0.5, Phi_S = 0.2-0.55 (seeds 1-3 at 0.4)")
+    stiff = {}
+    for r in study:
+        if r["name"].startswith("stiffness_kns1e3") or (r["name"] == "n050_seed1"):
+            stiff[float(r["kn_ratio"])] = (float(r["q_i"]), float(r["slope"]))
+    for kn, key in ((1e-6, "vem.eq10_kn_1e-6"), (1e-5, "vem.eq10_kn_1e-5"), (1e-4, "vem.eq10_kn_1e-4")):
+        if kn in stiff:
+            out[key] = _ours(stiff[kn][0], 0.0, 1, "1000", "N_S = 1000, n = 0.5, k_n,S = 1e3 N/m, seed 1")
+    low = sorted(kn for kn in stiff if kn <= 1e-4 * (1 + 1e-9))
+    high = sorted(kn for kn in stiff if kn > 1e-4 * (1 + 1e-9))
+    if high:
+        m, s = mean_sd(stiff[kn][0] for kn in high)
+        out["vem.plateau"] = _ours(m, s, len(high), "1000", f"mean q_i over K_n = {', '.join(f'{k:g}' for k in high)}")
+    if len(low) >= 2 and high:
+        # The paper's estimator: q_i = A ln K_n + B fitted for K_n <= 1e-4, the plateau its mean
+        # above; K_n^c where the two meet.
+        xs = [math.log(kn) for kn in low]
+        ys = [stiff[kn][0] for kn in low]
+        slope, intercept = _line(xs, ys)
+        plateau = statistics.mean(stiff[kn][0] for kn in high)
+        out["vem.kink_kn"] = _ours(math.exp((plateau - intercept) / slope), 0.0, 1, "1000",
+                                   f"q_i = {slope:.4f} ln K_n + {intercept:.3f} over K_n <= 1e-4 meets {plateau:.3f}")
+        xs_slope = [math.log(stiff[kn][1]) for kn in low]
+        b, _ = _line(xs, xs_slope)
+        out["vem.eq11_slope"] = _ours(b, 0.0, 1, "1000", "log-log line through the slopes at K_n <= 1e-4: " + ", ".join(
+            f"{stiff[kn][1]:.0f}" for kn in low))
+    return out
+
+
+def _line(xs, ys):
+    mx, my = statistics.mean(xs), statistics.mean(ys)
+    sxx = sum((x - mx) ** 2 for x in xs)
+    slope = sum((x - mx) * (y - my) for x, y in zip(xs, ys)) / sxx
+    return slope, my - slope * mx
+
+
+def doh_values(data):
+    """Table 2's VEM rows (vem_doh_ns8000.csv at the stage III end point, else the seed-1
+    structures of shear_table2_ns8000.csv), the BD rows at the paper's C (bd_seeds_ns8000.csv),
+    the eq. 7 fit (bd_fig6_fit_ns8000.csv) and the phase angle (shear_table2.csv)."""
+    out = {}
+    big = [r for r in read_table(os.path.join(data, "vem_doh_ns8000.csv")) if r["end"] == "stage3"]
+    note = "VEM stopped at stage III (strain energy 1e-3); static solver, six orientations"
+    if big:
+        groups = {}
+        for r in big:
+            groups.setdefault(int(r["voids"]), []).append(r)
+        for nv, rs in groups.items():
+            for key, column, scale in (("a", "a", 1.0), ("c", "coordination", 1.0), ("gp", "storage_modulus", 1e-6)):
+                m, s = mean_sd(float(r[column]) * scale for r in rs)
+                out[f"doh.{key}_nv{nv}"] = _ours(m, s, len(rs), "8000", note + "; SD over seeds")
+    else:
+        for r in read_table(os.path.join(data, "shear_table2_ns8000.csv")):
+            nv = int(r["voids"])
+            out[f"doh.a_nv{nv}"] = _ours(float(r["a"]), 0.0, 1, "8000", note + "; seed 1")
+            out[f"doh.c_nv{nv}"] = _ours(float(r["coordination"]), 0.0, 1, "8000", note + "; seed 1")
+            out[f"doh.gp_nv{nv}"] = _ours(float(r["storage_modulus"]) * 1e-6, 0.0, 1, "8000",
+                                          note + f"; seed 1 (SD over the six orientations {float(r['std']) * 1e-6:.3f})")
+    for r in read_table(os.path.join(data, "bd_fig6_fit_ns8000.csv")):
+        if r["data"] == "this work: VEM + BD":
+            out["doh.eq7_a0"] = _ours(float(r["a0"]), 0.0, 1, "8000", f"fit over {r['points']} structures (VEM + BD)")
+            out["doh.eq7_beta"] = _ours(float(r["beta"]), 0.0, 1, "8000", f"fit over {r['points']} structures (VEM + BD)")
+    phases = [abs(float(r["phase_angle"])) for r in read_table(os.path.join(data, "shear_table2.csv"))
+              if r["label"].startswith("this work")]
+    if phases:
+        out["doh.phase_angle"] = _ours(max(phases), 0.0, len(phases), "1000",
+                                       "largest |delta| of the dynamic test over six N_S = 1000 structures at 10000-40000 "
+                                       "steps per cycle (delta falls as 1/T; the static solver has 0)")
+    out.update(bd_values(data))
+    return out
+
+
+def bd_at_paper_c(seeds_csv):
+    """Per potential: the seeds' rows at the time whose mean C is nearest the paper's (the rule of
+    docs/bd.md and examples/bd/fig6.py): mV -> (time, [rows])."""
+    groups = {}
+    for r in read_table(seeds_csv):
+        groups.setdefault((int(round(float(r["surface_potential_mV"]))), round(float(r["time_diffusion_times"]), 6)),
+                          []).append(r)
+    chosen = {}
+    for mv in sorted({mv for mv, _ in groups}):
+        if mv not in BD_TABLE2:
+            continue
+        times = [(t, rs) for (m, t), rs in groups.items() if m == mv]
+        chosen[mv] = min(times, key=lambda tr: abs(statistics.mean(float(r["C"]) for r in tr[1]) - BD_TABLE2[mv][1]))
+    return chosen
+
+
+def bd_values(data):
+    out = {}
+    chosen = bd_at_paper_c(os.path.join(data, "bd_seeds_ns8000.csv"))
+    for mv, (time, rs) in chosen.items():
+        note = f"N = 8000, central bonds, stopped at t = {time:g} a^2/D_0 where C reaches the paper's"
+        for key, column, scale in (("a", "a", 1.0), ("c", "C", 1.0), ("gp", "storage_modulus_Pa", 1e-6)):
+            m, s = mean_sd(float(r[column]) * scale for r in rs)
+            out[f"doh.bd_{key}_psi{mv}"] = _ours(m, s, len(rs), "8000", note)
+    if 0 in chosen and 15 in chosen:
+        by_seed = {r["seed"]: float(r["storage_modulus_Pa"]) for r in chosen[0][1]}
+        ratios = [float(r["storage_modulus_Pa"]) / by_seed[r["seed"]] for r in chosen[15][1] if r["seed"] in by_seed]
+        m, s = mean_sd(ratios)
+        out["doh.ratio_he_ho"] = _ours(m, s, len(ratios), "8000", "per seed, BD gels at the paper's C")
+    return out
+
+
+def collect(data):
+    """The rows of the reproduction table (dicts with COLUMNS) from the tables in folder ``data``:
+    every key of PAPER_ROWS, with packlab's value where a table has it."""
+    ours = {}
+    ours.update(vem_values(data))
+    ours.update(doh_values(data))
+    rows = []
+    for key, (paper, quantity, source, value, scatter, paper_particles) in PAPER_ROWS.items():
+        o = ours.get(key, {})
+        v, sd = o.get("packlab_value"), o.get("packlab_sd")
+        rows.append({"key": key, "paper": paper, "quantity": quantity, "source": source, "paper_value": value,
+                     "paper_scatter": scatter, "packlab_value": "" if v is None else f"{v:.4g}",
+                     "packlab_sd": "" if sd is None else f"{sd:.2g}", "realizations": o.get("realizations", ""),
+                     "particles": o.get("particles", ""), "paper_particles": paper_particles,
+                     "within": within(value, scatter, v, sd), "note": o.get("note", "not run yet")})
+    return rows
+
+
+def write_csv(rows, path):
+    with atomic_output(path, ".reproduction-") as tmp:
+        with open(tmp, "w", newline="") as f:
+            f.write("# python3 -m packlab.reproduction collect docs/data (docs/reproduction.md); within: "
+                    "|packlab - paper| <= sqrt(s_paper^2 + s_packlab^2), s_paper = the paper's scatter or half its last digit\n")
+            w = csv.DictWriter(f, fieldnames=COLUMNS)
+            w.writeheader()
+            w.writerows(rows)
+    return path
+
+
+def markdown_table(rows):
+    lines = ["| key | quantity | source | paper | packlab (SD) | runs | N (paper N) | within | note |",
+             "|---|---|---|---|---|---|---|---|---|"]
+    cell = lambda text: str(text).replace("|", "\\|")  # a | inside a cell would end it
+    for r in rows:
+        r = {k: cell(v) for k, v in r.items()}
+        paper = r["paper_value"] + (f" ± {r['paper_scatter']}" if r["paper_scatter"] else "")
+        ours = r["packlab_value"] + (f" ({r['packlab_sd']})" if r["packlab_sd"] not in ("", "0") else "")
+        within_text = {"yes": "**yes**", "no": "no"}.get(r["within"], r["within"])
+        lines.append(f"| `{r['key']}` | {r['quantity']} | {r['source']} | {paper} | {ours or '—'} | "
+                     f"{r['realizations'] or '—'} | {r['particles'] or '—'} ({r['paper_particles']}) | {within_text} | "
+                     f"{r['note']} |")
+    return "\n".join(lines)
+
+
+def render(csv_path, md_path):
+    """Replaces, in md_path, the text between ``<!-- REPRODUCTION TABLE PAPER BEGIN -->`` and
+    ``<!-- REPRODUCTION TABLE PAPER END -->`` by the rows of that paper (PAPER = the paper's name
+    as in the CSV), and the summary between ``<!-- REPRODUCTION SUMMARY BEGIN/END -->``."""
+    rows = read_table(csv_path)
+    with open(md_path) as f:
+        text = f.read()
+    for paper in sorted({r["paper"] for r in rows}):
+        text = _replace(text, f"REPRODUCTION TABLE {paper}", markdown_table([r for r in rows if r["paper"] == paper]))
+    summary = ["| paper | rows | within | not within | no value yet |", "|---|---|---|---|---|"]
+    for paper in sorted({r["paper"] for r in rows}):
+        rs = [r for r in rows if r["paper"] == paper]
+        count = lambda w: sum(1 for r in rs if r["within"] == w)
+        summary.append(f"| {paper} | {len(rs)} | {count('yes')} | {count('no')} | {count('n/a')} |")
+    text = _replace(text, "REPRODUCTION SUMMARY", "\n".join(summary))
+    with atomic_output(md_path, ".reproduction-") as tmp:
+        with open(tmp, "w") as f:
+            f.write(text)
+    return md_path
+
+
+def _replace(text, marker, body):
+    begin, end = f"<!-- {marker} BEGIN -->", f"<!-- {marker} END -->"
+    if begin not in text or end not in text:
+        return text
+    head, rest = text.split(begin, 1)
+    _, tail = rest.split(end, 1)
+    return f"{head}{begin}\n{body}\n{end}{tail}"
+
+
+def main(argv=None):
+    parser = argparse.ArgumentParser(prog="python3 -m packlab.reproduction", description=__doc__.split("\n\n")[0])
+    sub = parser.add_subparsers(dest="command", required=True)
+    c = sub.add_parser("collect", help="DATA/*.csv -> DATA/reproduction.csv")
+    c.add_argument("data", nargs="?", default="docs/data")
+    c.add_argument("--out", default=None)
+    r = sub.add_parser("render", help="the tables of CSV into the markers of MD")
+    r.add_argument("csv")
+    r.add_argument("md")
+    args = parser.parse_args(argv)
+    if args.command == "collect":
+        if not os.path.isdir(args.data):
+            print(f"packlab.reproduction: data = {args.data}: not a folder", file=sys.stderr)
+            return 2
+        out = args.out or os.path.join(args.data, "reproduction.csv")
+        write_csv(collect(args.data), out)
+        print(f"wrote {out}")
+    else:
+        for path in (args.csv, args.md):
+            if not os.path.isfile(path):
+                print(f"packlab.reproduction: {path}: no such file", file=sys.stderr)
+                return 2
+        render(args.csv, args.md)
+        print(f"wrote {args.md}")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

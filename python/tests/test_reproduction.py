@@ -1,0 +1,70 @@
+"""packlab.reproduction: the within rule, the collection of rows from the data tables and the
+rendering into the page's markers (docs/reproduction.md)."""
+
+import csv
+
+import matplotlib
+import pytest
+
+matplotlib.use("Agg")
+
+from packlab import reproduction
+
+
+def test_half_a_unit_of_the_last_printed_digit():
+    assert reproduction.half_last_digit("0.884") == pytest.approx(0.0005)
+    assert reproduction.half_last_digit("3.4") == pytest.approx(0.05)
+    assert reproduction.half_last_digit("5.4e-4") == pytest.approx(0.05e-4)
+    assert reproduction.half_last_digit("12") == pytest.approx(0.5)
+
+
+def test_within_combines_the_paper_scatter_and_the_sd_over_realizations():
+    # |0.83 - 0.82| = 0.01 <= 0.01: inside; 0.8301 is not, unless packlab's own SD widens it.
+    assert reproduction.within("0.82", "0.01", 0.83, 0.0) == "yes"
+    assert reproduction.within("0.82", "0.01", 0.8302, 0.0) == "no"
+    assert reproduction.within("0.82", "0.01", 0.8302, 0.005) == "yes"
+    # No stated scatter: half the last digit (0.0005 for "0.594").
+    assert reproduction.within("0.594", "", 0.5944, 0.0) == "yes"
+    assert reproduction.within("0.594", "", 0.5946, 0.0) == "no"
+    # An upper bound, and a row without a value.
+    assert reproduction.within("< 3.1e-4", "", -2e-4, 0.0) == "yes"
+    assert reproduction.within("< 3.1e-4", "", 4e-4, 0.0) == "no"
+    assert reproduction.within("0.82", "0.01", None, None) == "n/a"
+
+
+def test_collect_reads_the_bd_rows_at_the_paper_coordination(tmp_path):
+    # Two seeds at two times for 0 and 15 mV; the rows at the time whose mean C is nearest the
+    # paper's (4.52 and 4.97) are taken, and the ratio is formed per seed.
+    (tmp_path / "bd_seeds_ns8000.csv").write_text(
+        "seed,surface_potential_mV,particles,time_diffusion_times,bonds_bd,largest_cluster_fraction,a,b,C,"
+        "storage_modulus_Pa,storage_modulus_std_Pa\n"
+        "1,0,8000,0.01,1,1,0.30,0,4.00,100000,1\n"
+        "1,0,8000,0.04,1,1,0.36,0,4.50,500000,1\n"
+        "2,0,8000,0.04,1,1,0.37,0,4.54,600000,1\n"
+        "1,15,8000,2.4,1,1,0.47,0,4.97,2000000,1\n"
+        "2,15,8000,2.4,1,1,0.46,0,4.96,2400000,1\n")
+    rows = {r["key"]: r for r in reproduction.collect(str(tmp_path))}
+    assert set(rows) == set(reproduction.PAPER_ROWS)
+    assert float(rows["doh.bd_a_psi0"]["packlab_value"]) == pytest.approx(0.365)
+    assert rows["doh.bd_a_psi0"]["realizations"] == 2
+    assert float(rows["doh.ratio_he_ho"]["packlab_value"]) == pytest.approx(4.0)  # (4 + 4) / 2
+    assert rows["doh.ratio_he_ho"]["paper_value"] == "3.4"
+    assert rows["vem.q_i_n13"]["within"] == "n/a" and rows["vem.q_i_n13"]["note"] == "not run yet"
+
+
+def test_csv_and_render_fill_the_markers(tmp_path):
+    rows = reproduction.collect(str(tmp_path))  # no data: every row without a value
+    path = reproduction.write_csv(rows, tmp_path / "reproduction.csv")
+    with open(path) as f:
+        header = next(line for line in f if not line.startswith("#"))
+    assert header.strip().split(",") == reproduction.COLUMNS
+    page = tmp_path / "page.md"
+    page.write_text("intro\n<!-- REPRODUCTION SUMMARY BEGIN -->\nold\n<!-- REPRODUCTION SUMMARY END -->\n"
+                    "<!-- REPRODUCTION TABLE doh-elastic-properties BEGIN -->\n<!-- REPRODUCTION TABLE "
+                    "doh-elastic-properties END -->\nafter\n")
+    reproduction.render(path, page)
+    text = page.read_text()
+    assert "old" not in text and text.startswith("intro") and text.rstrip().endswith("after")
+    assert "| `doh.gp_nv1000` |" in text and "`vem.q_i_n13`" not in text  # no marker for the VEM table
+    assert f"| {reproduction.DOH} | {sum(1 for r in rows if r['paper'] == reproduction.DOH)} | 0 | 0 |" in text
+    assert reproduction.main(["render", str(tmp_path / "missing.csv"), str(page)]) == 2
