@@ -170,16 +170,24 @@ def doh_values(data):
     structures of shear_table2_ns8000.csv), the BD rows at the paper's C (bd_seeds_ns8000.csv),
     the eq. 7 fit (bd_fig6_fit_ns8000.csv) and the phase angle (shear_table2.csv)."""
     out = {}
-    big = [r for r in read_table(os.path.join(data, "vem_doh_ns8000.csv")) if r["end"] == "stage3"]
+    table = read_table(os.path.join(data, "vem_doh_ns8000.csv"))
+    big = [r for r in table if r["end"] == "stage3"]
     note = "VEM stopped at stage III (strain energy 1e-3); static solver, six orientations"
     if big:
-        groups = {}
+        groups, matched = {}, {}
         for r in big:
             groups.setdefault(int(r["voids"]), []).append(r)
+        for r in table:
+            if r["end"] == "cmatched":
+                matched.setdefault(int(r["voids"]), []).append(r)
         for nv, rs in groups.items():
             for key, column, scale in (("a", "a", 1.0), ("c", "coordination", 1.0), ("gp", "storage_modulus", 1e-6)):
                 m, s = mean_sd(float(r[column]) * scale for r in rs)
-                out[f"doh.{key}_nv{nv}"] = _ours(m, s, len(rs), "8000", note + "; SD over seeds")
+                extra = ""
+                if matched.get(nv):  # the same runs stopped where CN reaches the paper's C
+                    mm, ms = mean_sd(float(r[column]) * scale for r in matched[nv])
+                    extra = f"; stopped at the paper's C instead: {mm:.4g} ± {ms:.2g} ({len(matched[nv])} seeds)"
+                out[f"doh.{key}_nv{nv}"] = _ours(m, s, len(rs), "8000", note + "; SD over seeds" + extra)
     else:
         for r in read_table(os.path.join(data, "shear_table2_ns8000.csv")):
             nv = int(r["voids"])
@@ -292,10 +300,33 @@ def render(csv_path, md_path):
         count = lambda w: sum(1 for r in rs if r["within"] == w)
         summary.append(f"| {paper} | {len(rs)} | {count('yes')} | {count('no')} | {count('n/a')} |")
     text = _replace(text, "REPRODUCTION SUMMARY", "\n".join(summary))
+    text = _replace(text, "VEM END POINTS", end_points_table(os.path.dirname(os.path.abspath(csv_path))))
     with atomic_output(md_path, ".reproduction-") as tmp:
         with open(tmp, "w") as f:
             f.write(text)
     return md_path
+
+
+def end_points_table(data):
+    """Markdown: Table 2's VEM structures at both end points of vem_doh_ns8000.csv (stage III, the
+    paper's C), mean ± SD over the seeds, beside the paper's a, C and G'_p."""
+    rows = read_table(os.path.join(data, "vem_doh_ns8000.csv"))
+    if not rows:
+        return "(no runs of examples/reproduction/vem_doh_ns8000.sh in docs/data yet)"
+    lines = ["| N_V | end | seeds | q_end | a (paper) | C (paper) | G'_p MPa (paper) | G'_p SD over orientations |",
+             "|---|---|---|---|---|---|---|---|"]
+    groups = {}
+    for r in rows:
+        groups.setdefault((int(r["voids"]), r["end"]), []).append(r)
+    fmt = lambda values, digits: "{:.{d}f} ± {:.{d}f}".format(*mean_sd(values), d=digits)
+    for (nv, end), rs in sorted(groups.items(), key=lambda kv: (kv[0][0], kv[0][1] != "stage3")):
+        a, c, gp, sd = DOH_TABLE2_VEM.get(nv, (float("nan"),) * 4)
+        lines.append(f"| {nv} | {'stage III' if end == 'stage3' else 'C = paper'} | {len(rs)} | "
+                     f"{fmt([r['q_end'] for r in rs], 3)} | {fmt([r['a'] for r in rs], 3)} ({a:g}) | "
+                     f"{fmt([r['coordination'] for r in rs], 2)} ({c:g}) | "
+                     f"{fmt([float(r['storage_modulus']) * 1e-6 for r in rs], 3)} ({gp:g} ± {sd:g}) | "
+                     f"{statistics.mean(float(r['std']) for r in rs) * 1e-6:.3f} |")
+    return "\n".join(lines)
 
 
 def _replace(text, marker, body):

@@ -72,6 +72,9 @@ realizations, accumulate(packing) adds one. Class k = -1 means all particles.
   ref.def("percus_yevick_contact", &reference::percus_yevick_contact, py::arg("c"), "g(2a+) of Percus-Yevick.");
   ref.def("percus_yevick_contact_mixture", &reference::percus_yevick_contact_mixture, py::arg("radius"),
           py::arg("volume_fraction"));
+  ref.def("percus_yevick", &reference::percus_yevick, py::arg("r_over_a"), py::arg("c"),
+          "The full Percus-Yevick g at R = r/a (contact at R = 2) of hard spheres at volume fraction c "
+          "(Wertheim's solution, Ornstein-Zernike in Fourier space, one numerical sine transform).");
 }
 
 }  // namespace packlab::python

@@ -230,3 +230,29 @@ TEST(ReferenceRdf, PercusYevickContactValuesAndWillis) {
   EXPECT_NEAR(ref::percus_yevick_contact_dilute(0.6, 1.0), (1 + 0.3) / 0.16, 1e-12);
   EXPECT_THROW(ref::willis_contact_original(0.1), InputError);
 }
+
+// The full Percus-Yevick g(r) (Wertheim's solution by Ornstein-Zernike in Fourier space): the
+// exact solution has h = -1 inside the core and g(2a+) = (1 + c/2) / (1 - c)^2; the numbers must
+// give both (the core is not imposed: h there comes out of the transform), and g -> 1 far away.
+TEST(ReferenceRdf, PercusYevickFullCurveHasTheExactCoreAndContactValue) {
+  namespace ref = analyze::reference;
+  const std::vector<double> core{1.0, 1.5, 1.9, 1.99};
+  for (double c : {0.1, 0.3, 0.5, 0.6}) {
+    for (double h : ref::percus_yevick_total_correlation(core, c)) EXPECT_NEAR(h, -1.0, 1e-4) << "c = " << c;
+    const std::vector<double> g = ref::percus_yevick({1.0, 2.0, 30.0}, c);
+    EXPECT_EQ(g[0], 0.0);
+    EXPECT_NEAR(g[1], ref::percus_yevick_contact(c), 1e-6 * ref::percus_yevick_contact(c)) << "c = " << c;
+    // Far away (15 diameters): 1, except at c = 0.6, beyond freezing, where the shells persist.
+    if (c <= 0.5) {
+      EXPECT_NEAR(g[2], 1.0, 2e-3) << "c = " << c;
+    }
+  }
+  // Dilute: g = 1 outside the core to first order in c (h = c-independent Mayer term only inside).
+  for (double g : ref::percus_yevick({2.0, 2.5, 4.0, 8.0}, 1e-4)) EXPECT_NEAR(g, 1.0, 1e-3);
+  // c = 0.5: the first minimum lies below 1 and the second peak above it (the liquid's shells).
+  const std::vector<double> shells = ref::percus_yevick({3.0, 4.0}, 0.5);
+  EXPECT_LT(shells[0], 0.7);
+  EXPECT_GT(shells[1], 1.2);
+  EXPECT_THROW(ref::percus_yevick({2.0}, 1.0), InputError);
+  EXPECT_THROW(ref::percus_yevick({0.0}, 0.3), InputError);
+}

@@ -1,5 +1,6 @@
 """g(r) of a packing against R = r/a with the analytic references: well-stirred (eq. 10),
-Willis (eq. 11-13) and the Percus-Yevick contact value (eq. 13), as two panels like the
+Willis (eq. 11-13), the Percus-Yevick contact value (eq. 13) and the full Percus-Yevick g(r)
+(column ``percus_yevick`` where the CSV has it), as two panels like the
 paper's Figs. 1-2: the contact region and the full range (the CSV written by
 ``packlab analyze rdf``, ``generate ls``, ``generate scrm`` and ``shake``). Several CSV files
 (e.g. LS and SCRM) are drawn on the same axes, labelled by ``--labels``."""
@@ -26,6 +27,10 @@ def figure(rdf_csvs, phi=None, labels=None, contact_range=(1.95, 2.25)):
     ax2.plot(r, data["well_stirred"], "k:", lw=0.8, label="well-stirred (10)")
     if phi:
         ax2.plot(r, data["willis"], "k--", lw=0.8, label="Willis (11-13)")
+        if "percus_yevick" in data:
+            for ax in (ax1, ax2):
+                ax.plot(r, data["percus_yevick"], "-", color="0.5", lw=0.8,
+                        label="Percus-Yevick g(r)" if ax is ax2 else None)
         g_py = percus_yevick_contact(phi)
         for ax in (ax1, ax2):
             ax.plot([2.0], [g_py], "kv", ms=6, label="Percus-Yevick g(2a+)" if ax is ax2 else None)
