@@ -7,8 +7,12 @@ each set alone, and over the paper's eleven (the same fit, packlab.plot.storage_
 usage: /usr/bin/python3 examples/bd/fig6.py BD_SEEDS_CSV VEM_CSV OUT_TABLE_CSV OUT_FIT_CSV
   (docs/data/bd_seeds_ns8000.csv docs/data/shear_table2_ns8000.csv docs/data/bd_fig6_ns8000.csv
    docs/data/bd_fig6_fit_ns8000.csv; docs/figures/make-bd-figures.sh draws the figure)
+VEM_CSV may also be examples/reproduction/vem_doh_tables.py's docs/data/vem_doh_ns8000.csv (one row
+per seed and end point): then the VEM points are the seed means of the end point END (environment,
+default cmatched: the structures stopped at the paper's C), docs/reproduction.md.
 """
 
+import os
 import statistics
 import sys
 
@@ -39,9 +43,19 @@ def bd_rows(seeds_csv):
 
 def vem_rows(vem_csv):
     t = read_table(vem_csv)
-    return [{"set": "VEM", "source": OURS_VEM, "structure": f"N_V = {int(t['voids'][k])}", "a": t["a"][k],
-             "C": t["coordination"][k], "storage_modulus": t["storage_modulus"][k], "std": t["std"][k]}
-            for k in range(len(t["a"]))]
+    if "end" not in t:
+        return [{"set": "VEM", "source": OURS_VEM, "structure": f"N_V = {int(t['voids'][k])}", "a": t["a"][k],
+                 "C": t["coordination"][k], "storage_modulus": t["storage_modulus"][k], "std": t["std"][k]}
+                for k in range(len(t["a"]))]
+    end = os.environ.get("END", "cmatched")
+    groups = {}
+    for k in range(len(t["a"])):
+        if t["end"][k] == end and int(t["voids"][k]) in PAPER_VEM:
+            groups.setdefault(int(t["voids"][k]), []).append(k)
+    mean = lambda name, idx: statistics.mean(float(t[name][k]) for k in idx)
+    return [{"set": "VEM", "source": OURS_VEM, "structure": f"N_V = {nv} ({len(idx)} seeds)", "a": mean("a", idx),
+             "C": mean("coordination", idx), "storage_modulus": mean("storage_modulus", idx), "std": mean("std", idx)}
+            for nv, idx in sorted(groups.items())]
 
 
 def paper_rows():

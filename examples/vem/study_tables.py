@@ -98,6 +98,10 @@ def run_name(group, row):
         return "phi" + row["phi-s"].replace(".", "")
     if group == "mass":
         return "n050_mass025"
+    if group == "kn_limit":
+        return f"stiffness_kns1e3_knv1e-2_limit{int(row['relax-max-steps']):05d}"
+    if group == "phi_ns4000":
+        return "phi" + row["phi-s"].replace(".", "") + "_ns4000"
     if group == "relax_n":
         return f"n{int(row['voids']) // 10:03d}_relax00050_seed{row['seed']}"
     if group == "relax":

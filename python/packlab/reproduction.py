@@ -106,9 +106,9 @@ def _ours(value, sd, realizations, particles, note):
 
 
 def vem_values(data):
-    """The VEM paper's rows: the n-series and Phi_S-series of vem_doh_ns8000.csv (paper size,
-    end point stage3) where it exists, else the reduced-size studies of vem_study.csv; the
-    stiffness series from vem_study.csv."""
+    """The VEM paper's rows: the n-series of vem_doh_ns8000.csv (paper size, end point stage3)
+    and the Phi_S-series of vem_phi_ns4000.csv (the paper's N_S = 4000) where they exist, else
+    the reduced-size studies of vem_study.csv; the stiffness series from vem_study.csv."""
     out = {}
     big = [r for r in read_table(os.path.join(data, "vem_doh_ns8000.csv")) if r["end"] == "stage3"]
     study = read_table(os.path.join(data, "vem_study.csv"))
@@ -124,12 +124,18 @@ def vem_values(data):
                             ("vem.phi_ti_over_n", "phi_total_i"), ("vem.beta", "beta")):
             m, s = mean_sd(r[column] for r in series)
             out[key] = _ours(m, s, k, particles, f"{what}; mean and SD over the runs, as the paper's over n")
-    phis = [r for r in study if r["name"].startswith("phi") or r["name"].startswith("n050_seed")]
-    phis = [r for r in phis if r["time_step_rule"] == "stiffness_sum"]
+    phis = read_table(os.path.join(data, "vem_phi_ns4000.csv"))
     if phis:
         m, s = mean_sd(r["phi_total_i"] for r in phis)
-        out["vem.phi_ti_over_phis"] = _ours(m, s, len(phis), "1000",
-                                            "N_S = 1000, n = 0.5, Phi_S = 0.2-0.55 (seeds 1-3 at 0.4)")
+        out["vem.phi_ti_over_phis"] = _ours(m, s, len(phis), "4000", "N_S = 4000, N_V = 2000, Phi_S = " + ", ".join(
+            r["phi_s"] for r in phis) + ", seed 1; mean and SD over Phi_S, as the paper's")
+    else:
+        phis = [r for r in study if r["name"].startswith("phi") or r["name"].startswith("n050_seed")]
+        phis = [r for r in phis if r["time_step_rule"] == "stiffness_sum"]
+        if phis:
+            m, s = mean_sd(r["phi_total_i"] for r in phis)
+            out["vem.phi_ti_over_phis"] = _ours(m, s, len(phis), "1000",
+                                                "N_S = 1000, n = 0.5, Phi_S = 0.2-0.55 (seeds 1-3 at 0.4)")
     stiff = {}
     for r in study:
         if r["name"].startswith("stiffness_kns1e3") or (r["name"] == "n050_seed1"):
@@ -166,28 +172,31 @@ def _line(xs, ys):
 
 
 def doh_values(data):
-    """Table 2's VEM rows (vem_doh_ns8000.csv at the stage III end point, else the seed-1
-    structures of shear_table2_ns8000.csv), the BD rows at the paper's C (bd_seeds_ns8000.csv),
-    the eq. 7 fit (bd_fig6_fit_ns8000.csv) and the phase angle (shear_table2.csv)."""
+    """Table 2's VEM rows (vem_doh_ns8000.csv: the structures stopped at the paper's C, with their
+    stage III values in the note; else the seed-1 stage III structures of shear_table2_ns8000.csv),
+    the BD rows at the paper's C (bd_seeds_ns8000.csv), the eq. 7 fit over both sets
+    (doh_fig6_cmatched_fit.csv, else bd_fig6_fit_ns8000.csv) and the phase angle
+    (shear_phase_angle_ns8000.csv, else shear_table2.csv)."""
     out = {}
     table = read_table(os.path.join(data, "vem_doh_ns8000.csv"))
-    big = [r for r in table if r["end"] == "stage3"]
     note = "VEM stopped at stage III (strain energy 1e-3); static solver, six orientations"
-    if big:
-        groups, matched = {}, {}
-        for r in big:
-            groups.setdefault(int(r["voids"]), []).append(r)
+    if table:
+        # Each structure stopped where its CN reaches the paper's C (as the BD rows): the rule the
+        # paper's constant C suggests; the stage III values (the VEM paper's stop) in the note.
+        ends = {}
         for r in table:
-            if r["end"] == "cmatched":
-                matched.setdefault(int(r["voids"]), []).append(r)
-        for nv, rs in groups.items():
+            ends.setdefault((int(r["voids"]), r["end"]), []).append(r)
+        for nv in sorted({nv for nv, _ in ends}):
+            matched, stage3 = ends.get((nv, "cmatched"), []), ends.get((nv, "stage3"), [])
+            rs = matched or stage3
             for key, column, scale in (("a", "a", 1.0), ("c", "coordination", 1.0), ("gp", "storage_modulus", 1e-6)):
                 m, s = mean_sd(float(r[column]) * scale for r in rs)
-                extra = ""
-                if matched.get(nv):  # the same runs stopped where CN reaches the paper's C
-                    mm, ms = mean_sd(float(r[column]) * scale for r in matched[nv])
-                    extra = f"; stopped at the paper's C instead: {mm:.4g} ± {ms:.2g} ({len(matched[nv])} seeds)"
-                out[f"doh.{key}_nv{nv}"] = _ours(m, s, len(rs), "8000", note + "; SD over seeds" + extra)
+                text = ("VEM run on until CN reaches the paper's C" + (" (C matched by that choice)" if key == "c" else "")
+                        if matched else note) + "; static solver, six orientations; SD over seeds"
+                if matched and stage3:
+                    sm, ss = mean_sd(float(r[column]) * scale for r in stage3)
+                    text += f"; at stage III (the VEM paper's stop): {sm:.4g} ± {ss:.2g}"
+                out[f"doh.{key}_nv{nv}"] = _ours(m, s, len(rs), "8000", text)
     else:
         for r in read_table(os.path.join(data, "shear_table2_ns8000.csv")):
             nv = int(r["voids"])
@@ -195,13 +204,25 @@ def doh_values(data):
             out[f"doh.c_nv{nv}"] = _ours(float(r["coordination"]), 0.0, 1, "8000", note + "; seed 1")
             out[f"doh.gp_nv{nv}"] = _ours(float(r["storage_modulus"]) * 1e-6, 0.0, 1, "8000",
                                           note + f"; seed 1 (SD over the six orientations {float(r['std']) * 1e-6:.3f})")
-    for r in read_table(os.path.join(data, "bd_fig6_fit_ns8000.csv")):
+    matched_fit = read_table(os.path.join(data, "doh_fig6_cmatched_fit.csv"))
+    fits = matched_fit or read_table(os.path.join(data, "bd_fig6_fit_ns8000.csv"))
+    for r in fits:
         if r["data"] == "this work: VEM + BD":
-            out["doh.eq7_a0"] = _ours(float(r["a0"]), 0.0, 1, "8000", f"fit over {r['points']} structures (VEM + BD)")
-            out["doh.eq7_beta"] = _ours(float(r["beta"]), 0.0, 1, "8000", f"fit over {r['points']} structures (VEM + BD)")
+            what = f"fit over {r['points']} structures (VEM + BD" + (
+                ", all at the paper's C)" if matched_fit else ")")
+            out["doh.eq7_a0"] = _ours(float(r["a0"]), 0.0, 1, "8000", what)
+            out["doh.eq7_beta"] = _ours(float(r["beta"]), 0.0, 1, "8000", what)
+    rates = read_table(os.path.join(data, "shear_phase_angle_ns8000.csv"))
     phases = [abs(float(r["phase_angle"])) for r in read_table(os.path.join(data, "shear_table2.csv"))
               if r["label"].startswith("this work")]
-    if phases:
+    if rates:
+        slow = max(rates, key=lambda r: int(r["steps_per_cycle"]))
+        out["doh.phase_angle"] = _ours(float(slow["phase_angle_max_abs"]), 0.0, 1, "8000",
+                                       f"largest |delta| over 3 cycles of {int(slow['steps_per_cycle'])} steps, "
+                                       "N_V = 2000 structure, z:x (examples/reproduction/phase_angle.sh); " + ", ".join(
+                                           f"{int(r['steps_per_cycle'])} steps: {float(r['phase_angle_max_abs']):.2g}"
+                                           for r in rates))
+    elif phases:
         out["doh.phase_angle"] = _ours(max(phases), 0.0, len(phases), "1000",
                                        "largest |delta| of the dynamic test over six N_S = 1000 structures at 10000-40000 "
                                        "steps per cycle (delta falls as 1/T; the static solver has 0)")
