@@ -14,7 +14,7 @@ if [ -f "$DATA/vem_doh_ns8000.csv" ]; then
   END=cmatched "$PY" "$ROOT/examples/bd/fig6.py" "$DATA/bd_seeds_ns8000.csv" "$DATA/vem_doh_ns8000.csv" \
     "$DATA/doh_fig6_cmatched.csv" "$DATA/doh_fig6_cmatched_fit.csv" > /dev/null
   "$PY" -m packlab.plot storage_modulus "$DATA/doh_fig6_cmatched.csv" \
-    --fit-label "this work: VEM (N_S = 8000)|this work: BD (N = 8000; C as the paper's)" \
+    --fit-label "this work: VEM (N_S = 8000; C as the paper's)|this work: BD (N = 8000; C as the paper's)" \
     --out "$ROOT/docs/img/doh_fig6_cmatched.png"
   echo "wrote docs/data/doh_fig6_cmatched*.csv, docs/img/doh_fig6_cmatched.png from docs/data/vem_doh_ns8000.csv"
 fi

@@ -26,6 +26,7 @@ from packlab.tables import read_table
 PAPER_BD = {mv: (a, c, g * 1e6, sd * 1e6) for mv, (a, c, g, sd) in PAPER.items()}
 PAPER_VEM = {nv: (a, c, g * 1e6, sd * 1e6) for nv, (a, c, g, sd) in DOH_TABLE2_VEM.items()}
 OURS_VEM, OURS_BD = "this work: VEM (N_S = 8000)", "this work: BD (N = 8000; C as the paper's)"
+OURS_VEM_MATCHED = "this work: VEM (N_S = 8000; C as the paper's)"
 PAPER_VEM_LABEL, PAPER_BD_LABEL = "paper: VEM", "paper: BD"
 
 
@@ -53,7 +54,8 @@ def vem_rows(vem_csv):
         if t["end"][k] == end and int(t["voids"][k]) in PAPER_VEM:
             groups.setdefault(int(t["voids"][k]), []).append(k)
     mean = lambda name, idx: statistics.mean(float(t[name][k]) for k in idx)
-    return [{"set": "VEM", "source": OURS_VEM, "structure": f"N_V = {nv} ({len(idx)} seeds)", "a": mean("a", idx),
+    label = OURS_VEM_MATCHED if end == "cmatched" else f"this work: VEM {end} (N_S = 8000)"
+    return [{"set": "VEM", "source": label, "structure": f"N_V = {nv} ({len(idx)} seeds)", "a": mean("a", idx),
              "C": mean("coordination", idx), "storage_modulus": mean("storage_modulus", idx), "std": mean("std", idx)}
             for nv, idx in sorted(groups.items())]
 
@@ -75,7 +77,8 @@ def main(seeds_csv, vem_csv, table_out, fit_out):
         for r in rows:
             f.write(f"{r['source']},{r['set']},{r['structure']},{r['a']:.6g},{r['C']:.6g},"
                     f"{r['storage_modulus']:.6g},{r['std']:.6g}\n")
-    fits = [("this work: VEM + BD", [OURS_VEM, OURS_BD]), ("this work: VEM", [OURS_VEM]),
+    vem_label = next((r["source"] for r in rows if r["set"] == "VEM" and r["source"].startswith("this work")), OURS_VEM)
+    fits = [("this work: VEM + BD", [vem_label, OURS_BD]), ("this work: VEM", [vem_label]),
             ("this work: BD", [OURS_BD]), ("paper: VEM + BD", [PAPER_VEM_LABEL, PAPER_BD_LABEL]),
             ("paper: VEM", [PAPER_VEM_LABEL]), ("paper: BD", [PAPER_BD_LABEL])]
     with open(fit_out, "w") as f:

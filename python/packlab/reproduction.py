@@ -191,11 +191,12 @@ def doh_values(data):
             rs = matched or stage3
             for key, column, scale in (("a", "a", 1.0), ("c", "coordination", 1.0), ("gp", "storage_modulus", 1e-6)):
                 m, s = mean_sd(float(r[column]) * scale for r in rs)
-                text = ("VEM run on until CN reaches the paper's C" + (" (C matched by that choice)" if key == "c" else "")
-                        if matched else note) + "; static solver, six orientations; SD over seeds"
+                text = ("VEM structure where CN first reaches the paper's C" + (
+                    " (C matched by that choice)" if key == "c" else "") if matched else note) + \
+                    "; static solver, six orientations; SD over seeds"
                 if matched and stage3:
                     sm, ss = mean_sd(float(r[column]) * scale for r in stage3)
-                    text += f"; at stage III (the VEM paper's stop): {sm:.4g} ± {ss:.2g}"
+                    text += f"; at stage III (the VEM paper's stop): {sm:.4g}" + (f" ± {ss:.2g}" if len(stage3) > 1 else "")
                 out[f"doh.{key}_nv{nv}"] = _ours(m, s, len(rs), "8000", text)
     else:
         for r in read_table(os.path.join(data, "shear_table2_ns8000.csv")):
@@ -339,7 +340,9 @@ def end_points_table(data):
     groups = {}
     for r in rows:
         groups.setdefault((int(r["voids"]), r["end"]), []).append(r)
-    fmt = lambda values, digits: "{:.{d}f} ± {:.{d}f}".format(*mean_sd(values), d=digits)
+    def fmt(values, digits):  # mean ± SD over the seeds; the value alone for one seed
+        m, sd = mean_sd(values)
+        return f"{m:.{digits}f}" + (f" ± {sd:.{digits}f}" if len(values) > 1 else "")
     for (nv, end), rs in sorted(groups.items(), key=lambda kv: (kv[0][0], kv[0][1] != "stage3")):
         a, c, gp, sd = DOH_TABLE2_VEM.get(nv, (float("nan"),) * 4)
         lines.append(f"| {nv} | {'stage III' if end == 'stage3' else 'C = paper'} | {len(rs)} | "
