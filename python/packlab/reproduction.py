@@ -113,7 +113,8 @@ def vem_values(data):
     big = [r for r in read_table(os.path.join(data, "vem_doh_ns8000.csv")) if r["end"] == "stage3"]
     study = read_table(os.path.join(data, "vem_study.csv"))
     if big:
-        series, particles, what = big, "8000", "N_S = 8000, N_V = 1000-16000, seeds " + ", ".join(
+        voids = sorted({int(r["voids"]) for r in big})
+        series, particles, what = big, "8000", f"N_S = 8000, N_V = {voids[0]}-{voids[-1]}, seeds " + ", ".join(
             sorted({r["seed"] for r in big}))
     else:
         names = {"n025", "n050_seed1", "n050_seed2", "n050_seed3", "n100", "n200"}
