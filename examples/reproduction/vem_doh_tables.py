@@ -54,12 +54,18 @@ def main(argv):
         head = [r for r in rows if int(r["cycle"]) <= ends["stage3_cycle"]]
         analysis = {"window_widths": 4.0, "power_law_max_excess": 1.0}
         inf, phi_i, pl = fits(head, n, report["phi_s"], analysis)
-        cpu = float("nan")
+        # CPU seconds of the VEM run and its resumptions; nan when a part was killed before its
+        # timer wrote (an empty file): the total would be too low.
+        cpu, complete = 0.0, True
         for name in ("vem.time", "vem_resume.time"):
             p = os.path.join(run, name)
             if os.path.isfile(p):
-                wall, user, system = open(p).read().split()[-3:]
-                cpu = (0.0 if cpu != cpu else cpu) + float(user) + float(system)
+                fields = open(p).read().split()[-3:]
+                try:
+                    cpu += float(fields[1]) + float(fields[2])
+                except (IndexError, ValueError):
+                    complete = False
+        cpu = cpu if complete and cpu > 0.0 else float("nan")
         for end in ("stage3", "cmatched"):
             doh_path, shear_path = (os.path.join(run, end, "doh", "report.json"),
                                     os.path.join(run, end, "shear", "report.json"))
