@@ -4,8 +4,8 @@
 # run, max_q 2.2 -- the runs of docs/shear.md's "Table 2 at the paper's size", now per seed and
 # with two end points per run:
 #   stage3   the structure where stage III stops the default run (strain energy 1e-3)
-#   cmatched the first structure whose CN reaches the paper's C of that N_V (Table 2: 4.68, 4.71,
-#            4.69, 4.69, 4.69, 4.61); the loose structures reach it only after stage III, so the
+#   cmatched the first structure whose CN reaches the paper's C of that N_V (Table 2, as in
+#            packlab.reproduction); the loose structures reach it only after stage III, so the
 #            run goes on until both hold (stop.min_coordination), which leaves the curve up to
 #            stage III, and so q_i, the slope and beta, as the default run's
 # Each run keeps a snapshot per cycle until both end points are taken out (then they are
@@ -30,9 +30,11 @@ HERE=$(cd "$(dirname "$0")" && pwd)
 SHEAR_CFG="$HERE/../shear/table2_small.toml"
 PY=${PYTHON:-python3}
 
-# The paper's C per N_V (doh-elastic-properties Table 2, VEM rows).
+# The paper's C per N_V (doh-elastic-properties Table 2, VEM rows: packlab.reproduction's
+# DOH_TABLE2_VEM); 4.69 for an N_V the table does not list.
 paper_c() {
-  case $1 in 1000) echo 4.68 ;; 2000) echo 4.71 ;; 16000) echo 4.61 ;; *) echo 4.69 ;; esac
+  PYTHONPATH="$HERE/../../python${PYTHONPATH:+:$PYTHONPATH}" "$PY" -c \
+    'import sys; from packlab.reproduction import DOH_TABLE2_VEM as t; print(t.get(int(sys.argv[1]), (0, 4.69))[1])' "$1"
 }
 
 # timed NAME DIR CMD...: CMD with its wall and CPU seconds in DIR/NAME.time ("wall user system")
