@@ -53,11 +53,7 @@ nlohmann::json write_rdf_outputs(const analyze::Rdf& rdf, const std::vector<doub
     csv << "r,R,K,g,I,well_stirred,willis,percus_yevick\n";
     // The full Percus-Yevick curve of one size (nan for mixtures, whose partial curves are not computed).
     std::vector<double> py_curve(R.size(), std::numeric_limits<double>::quiet_NaN());
-    if (nc == 1 && c_total < 1.0) {
-      std::vector<double> positive(R.size());
-      for (std::size_t b = 0; b < R.size(); ++b) positive[b] = std::max(R[b], 1e-9);
-      py_curve = ref::percus_yevick(positive, c_total);
-    }
+    if (nc == 1 && c_total < 1.0) py_curve = ref::percus_yevick(R, c_total);  // R = b dr > 0 (Rdf::reduced_r)
     for (std::size_t b = 0; b < R.size(); ++b)
       csv << fmt::format("{:.10g},{:.6g},{:.10g},{:.10g},{:.10g},{},{:.10g},{:.10g}\n", R[b] * a[0], R[b], K[b], G[b],
                          I[b], ref::well_stirred(R[b], 1.0), nc == 1 ? ref::willis(R[b], 1.0, c_total) : 1.0,
