@@ -32,7 +32,7 @@ COLUMNS = ["key", "paper", "quantity", "source", "paper_value", "paper_scatter",
 DOH_TABLE2_VEM = {1000: (0.594, 4.68, 1.73, 0.383), 2000: (0.521, 4.71, 1.83, 0.136), 4000: (0.467, 4.69, 1.62, 0.190),
                   8000: (0.418, 4.69, 1.32, 0.237), 13000: (0.399, 4.69, 1.32, 0.267), 16000: (0.392, 4.61, 1.17, 0.231)}
 
-VEM, DOH = "vem-void-expansion-method", "doh-elastic-properties"
+VEM, DOH, OPAL = "vem-void-expansion-method", "doh-elastic-properties", "bpm-inverse-opals"
 
 
 def _paper_rows():
@@ -62,6 +62,17 @@ def _paper_rows():
         rows[f"doh.bd_c_psi{mv}"] = (DOH, f"coordination C, BD psi_0 = {mv} mV", "Table 2", f"{c:g}", "", "8000")
         rows[f"doh.bd_gp_psi{mv}"] = (DOH, f"G'_p [MPa], BD psi_0 = {mv} mV", "Table 2", f"{gp:g}", f"{sd:g}", "8000")
     rows["doh.ratio_he_ho"] = (DOH, "G'_p(15 mV) / G'_p(0 mV)", "§3.1, Fig. 5", "3.4", "", "8000")
+    # bpm-inverse-opals §4 (Fig. 14): random pores, porosity 0.39-0.63, five samples each; the
+    # 0.39 samples hold about 3.4 million particles.
+    rows["opal.porosity_E_049"] = (OPAL, "E at porosity 0.49 [GPa], paper's bonds", "§4, Fig. 14", "6.3", "", "3.4e6")
+    rows["opal.porosity_E_063"] = (OPAL, "E at porosity 0.63 [GPa], paper's bonds", "§4, Fig. 14", "3.3", "", "3.4e6")
+    rows["opal.porosity_strength_049"] = (OPAL, "strength at porosity 0.49 [MPa]", "§4, Fig. 14", "92.9", "", "3.4e6")
+    rows["opal.porosity_strength_063"] = (OPAL, "strength at porosity 0.63 [MPa]", "§4, Fig. 14", "46.7", "", "3.4e6")
+    rows["opal.eq25_E0"] = (OPAL, "E0 of E = E0 (1 - eps)^m [GPa]", "eq. 25", "22.06", "", "3.4e6")
+    rows["opal.eq25_m"] = (OPAL, "m of eq. 25", "eq. 25", "1.92", "", "3.4e6")
+    rows["opal.eq24_b"] = (OPAL, "b of E = E0 exp(-b eps) (E0 of eq. 25)", "eq. 24", "2.99", "", "3.4e6")
+    rows["opal.eq26_a"] = (OPAL, "sigma0 of strength = sigma0 exp(-b eps) [MPa]", "eq. 26", "576.3", "", "3.4e6")
+    rows["opal.eq26_b"] = (OPAL, "b of eq. 26", "eq. 26", "3.85", "", "3.4e6")
     return rows
 
 
@@ -264,12 +275,57 @@ def bd_values(data):
     return out
 
 
+def opal_values(data):
+    """The opal paper's porosity rows (§4, Fig. 14, eq. 24-26) from the study over the paper's
+    range (opal_porosity_paper*.csv, examples/opal/porosity_tables.py): E and strength at pore
+    fractions 0.49 and 0.63 (mean and SD over the seeds), and the paper's estimator for the laws:
+    eq. 25 fitted with E0 free over all samples, eq. 24 with E0 held at eq. 25's (the paper's
+    eq. 24 and 25 share E0 = 22.06 GPa), eq. 26 free; eps = the pore volume fraction."""
+    out = {}
+    levels = read_table(os.path.join(data, "opal_porosity_paper_levels.csv"))
+    samples = read_table(os.path.join(data, "opal_porosity_paper.csv"))
+    if not levels or not samples:
+        return out
+    n_particles = sorted(int(r["particles"]) for r in samples)
+    particles = f"{n_particles[0]}-{n_particles[-1]}"
+    what = "the paper's sample scaled by 150/762 (pores 138 nm packed at 150 nm, D/d = 9.2), paper's bonds, static solver"
+    for r in levels:
+        f = float(r["pore_fraction"])
+        for level in ("049", "063"):
+            if abs(f - int(level) / 100) < 1e-9:
+                n = int(r["samples"])
+                note = f"{what}; pore fraction {float(r['pore_fraction_of_box']):.3f}, {n} seeds"
+                out[f"opal.porosity_E_{level}"] = _ours(float(r["youngs_modulus"]) * 1e-9,
+                                                       float(r["youngs_modulus_sd"]) * 1e-9, n, particles, note)
+                out[f"opal.porosity_strength_{level}"] = _ours(float(r["strength"]) * 1e-6, float(r["strength_sd"]) * 1e-6,
+                                                              n, particles, note)
+    fits = read_table(os.path.join(data, "opal_porosity_paper_fits.csv"))
+
+    def per_seed(quantity, law, held, column, scale=1.0):
+        values = [float(r[column]) * scale for r in fits if r["eps"] == "pore_fraction_of_box" and
+                  r["quantity"] == quantity and r["law"] == law and r["e0_held"] == held and r["seed"] != "all"]
+        m, s = mean_sd(values)
+        return m, s, len(values)
+
+    note = f"{what}; fitted per seed over its six porosities, mean and SD over the seeds"
+    for key, args in (("opal.eq25_E0", ("youngs_modulus", "power", "0", "e0", 1e-9)),
+                      ("opal.eq25_m", ("youngs_modulus", "power", "0", "exponent")),
+                      ("opal.eq24_b", ("youngs_modulus", "exponential", "shared", "exponent")),
+                      ("opal.eq26_a", ("strength", "exponential", "0", "e0", 1e-6)),
+                      ("opal.eq26_b", ("strength", "exponential", "0", "exponent"))):
+        m, s, n = per_seed(*args)
+        if n:
+            out[key] = _ours(m, s, n, particles, note + ("; E0 held at eq. 25's" if key == "opal.eq24_b" else ""))
+    return out
+
+
 def collect(data):
     """The rows of the reproduction table (dicts with COLUMNS) from the tables in folder ``data``:
     every key of PAPER_ROWS, with packlab's value where a table has it."""
     ours = {}
     ours.update(vem_values(data))
     ours.update(doh_values(data))
+    ours.update(opal_values(data))
     rows = []
     for key, (paper, quantity, source, value, scatter, paper_particles) in PAPER_ROWS.items():
         o = ours.get(key, {})

@@ -66,6 +66,14 @@ def test_random_pores_and_bad_input():
     fba = packlab.generate_fba(box=(12.0, 12.0, 14.0), porosity=0.40, periodic="xy", seed=1)
     o = packlab.build_opal(fba.packing, pores="random", pore_ratio=4.0, pore_count=8, seed=3)
     assert o.pores == 8
+    # Periodic pores over the whole box: the eight pores plus the images of those that cross the
+    # top or bottom face (pores counts every sphere cut).
+    p = packlab.build_opal(fba.packing, pores="random", pore_ratio=4.0, pore_count=8, pore_boundary="periodic", seed=3)
+    assert p.pores > 8
+    with pytest.raises(packlab.InputError, match="pore_boundary = open: must be walls or periodic"):
+        packlab.build_opal(fba.packing, pores="random", pore_ratio=4.0, pore_count=8, pore_boundary="open")
+    with pytest.raises(packlab.InputError, match="pore_boundary = periodic: only with pores = random"):
+        packlab.build_opal(fba.packing, pore_ratio=4.0, pore_boundary="periodic")
     with pytest.raises(packlab.InputError, match="bond_cutoff = 2.5"):
         packlab.build_opal(fba.packing, pore_ratio=4.0, bond_cutoff=2.5)
     with pytest.raises(packlab.InputError, match="porosity = 0.1"):

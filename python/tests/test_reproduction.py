@@ -68,3 +68,33 @@ def test_csv_and_render_fill_the_markers(tmp_path):
     assert "| `doh.gp_nv1000` |" in text and "`vem.q_i_n13`" not in text  # no marker for the VEM table
     assert f"| {reproduction.DOH} | {sum(1 for r in rows if r['paper'] == reproduction.DOH)} | 0 | 0 |" in text
     assert reproduction.main(["render", str(tmp_path / "missing.csv"), str(page)]) == 2
+
+
+def test_collect_reads_the_opal_porosity_rows_per_seed(tmp_path):
+    # Two seeds: E and strength at 0.49 and 0.63 are the level means; the laws' parameters the
+    # mean and SD of the per-seed fits (eq. 24 from the fits with E0 shared with eq. 25).
+    (tmp_path / "opal_porosity_paper_levels.csv").write_text(
+        "# c\npore_fraction,samples,pore_fraction_of_box,pore_fraction_of_box_sd,porosity,porosity_sd,particles,"
+        "particles_sd,youngs_modulus,youngs_modulus_sd,strength,strength_sd\n"
+        "0.49,2,0.489,0,0.52,0.01,20000,10,6e9,0.2e9,90e6,5e6\n"
+        "0.63,2,0.631,0,0.67,0.01,14000,10,3e9,0.1e9,45e6,2e6\n")
+    (tmp_path / "opal_porosity_paper.csv").write_text(
+        "# c\npore_fraction,seed,pores,pore_fraction_of_box,porosity,particles,bonds,youngs_modulus,strength,"
+        "broken_bonds,seconds\n0.49,1,35,0.489,0.52,20010,1,6e9,90e6,1,1\n0.63,2,44,0.631,0.67,13990,1,3e9,45e6,1,1\n")
+    fits = "# c\neps,quantity,law,e0_held,seed,e0,e0_err,exponent,exponent_err,rms_relative\n"
+    for seed, m, b in (("all", 9.0, 9.0), ("1", 1.8, 2.8), ("2", 2.0, 3.2)):
+        fits += (f"pore_fraction_of_box,youngs_modulus,power,0,{seed},2e10,1e9,{m},0.1,0.01\n"
+                 f"pore_fraction_of_box,youngs_modulus,exponential,shared,{seed},2e10,0,{b},0.1,0.01\n"
+                 f"porosity,youngs_modulus,power,0,{seed},3e10,1e9,7.0,0.1,0.01\n"
+                 f"pore_fraction_of_box,strength,exponential,0,{seed},5e8,1e7,3.9,0.1,0.01\n")
+    (tmp_path / "opal_porosity_paper_fits.csv").write_text(fits)
+    rows = {r["key"]: r for r in reproduction.collect(str(tmp_path))}
+    assert float(rows["opal.porosity_E_063"]["packlab_value"]) == pytest.approx(3.0)
+    assert float(rows["opal.porosity_strength_049"]["packlab_value"]) == pytest.approx(90.0)
+    assert float(rows["opal.eq25_m"]["packlab_value"]) == pytest.approx(1.9)  # seeds only, not "all"
+    assert float(rows["opal.eq25_m"]["packlab_sd"]) == pytest.approx(0.14, abs=0.005)
+    assert rows["opal.eq25_m"]["realizations"] == 2 and rows["opal.eq25_m"]["particles"] == "13990-20010"
+    assert float(rows["opal.eq24_b"]["packlab_value"]) == pytest.approx(3.0)
+    assert float(rows["opal.eq25_E0"]["packlab_value"]) == pytest.approx(20.0)
+    assert float(rows["opal.eq26_a"]["packlab_value"]) == pytest.approx(500.0)
+    assert rows["opal.eq26_b"]["within"] == "no"  # 3.9 against 3.85 +- 0.005

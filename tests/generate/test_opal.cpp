@@ -5,10 +5,10 @@
 #include <numbers>
 #include <string>
 
+#include "../input_error.hpp"
 #include "packlab/core/error.hpp"
 #include "packlab/generate/fba.hpp"
 #include "packlab/generate/opal.hpp"
-#include "../input_error.hpp"
 
 using namespace packlab;
 using namespace packlab::generate;
@@ -229,8 +229,10 @@ TEST(Opal, CoatingIsTheShellOfEq2KeepingOpeningsFree) {
     for (std::size_t k = 0; k < in.size() && !near; ++k)
       near = cls[k] == 0 &&
              norm(in.box.minimum_image(in.position[k] - in.position[i])) - in.radius[k] <= Lc + in.radius[i];
-    if (near) expected_type[i] = particle_type::coating;
-    else ++openings;
+    if (near)
+      expected_type[i] = particle_type::coating;
+    else
+      ++openings;
   }
   for (std::size_t i = 0; i < in.size(); ++i)
     if (expected_type[i] >= 0 && in.position[i].z < 2.0) expected_type[i] = particle_type::substrate;
@@ -257,10 +259,11 @@ TEST(Opal, CoatingIsTheShellOfEq2KeepingOpeningsFree) {
   build_opal(in, closed, &s2);
   EXPECT_EQ(s2.coating_openings, 0);
   EXPECT_EQ(s2.coating, s.coating + openings);
-  EXPECT_NEAR(s.density, (1297.0 * double(s.structural) + 3660.0 * double(s.coating)) /
-                             double(std::count_if(in.position.begin(), in.position.end(),
-                                                  [](const Vec3& x) { return x.z >= 2.0; })),
-              1e-9);
+  EXPECT_NEAR(
+      s.density,
+      (1297.0 * double(s.structural) + 3660.0 * double(s.coating)) /
+          double(std::count_if(in.position.begin(), in.position.end(), [](const Vec3& x) { return x.z >= 2.0; })),
+      1e-9);
 }
 
 TEST(Opal, FbaPackingWith111PoresHasNoCentreInAPore) {
@@ -317,6 +320,63 @@ TEST(Opal, RandomPoresFromTheForceBiasedAlgorithm) {
   const double geometric = union_fraction(in.box, o.pores, 0.5, 2.0, 26.0, 0.4);
   EXPECT_NEAR(s.porosity, geometric, 0.02);
   EXPECT_EQ(s.substrate, 2 * 24 * 24);  // pores stay above the substrate region
+}
+
+// Periodic random pores over the whole box (pore_boundary = periodic): they cut the top and
+// the bottom face and reach into the substrate slab, as the paper's pores reach its fixed layer;
+// the particles removed are those of eq. 1 for some pore or image, and the porosity is the pore
+// volume fraction of the box.
+TEST(Opal, PeriodicRandomPoresCutTheFacesAndTheSubstrate) {
+  Packing in = sc_lattice(24, 24, 26);
+  RandomPores rp;
+  rp.diameter = 8.0;
+  rp.count = 26;  // pore fraction 26 x 268.1 / 14976 = 0.465
+  rp.periodic = true;
+  Random rng(4);
+  OpalOptions o;
+  o.pores = random_pores(in.box, rp, rng);
+  ASSERT_GT(o.pores.size(), 26u);  // images at the opposite faces
+  OpalSummary s;
+  const Packing out = build_opal(in, o, &s);
+  long in_pore = 0;
+  for (std::size_t i = 0; i < in.size(); ++i) {
+    const auto L = pore_distances(in.box, o.pores, in.position[i]);
+    bool inside = false;
+    for (std::size_t k = 0; k < L.size(); ++k) inside = inside || L[k] <= 4.0 + in.radius[i];
+    in_pore += inside;
+  }
+  EXPECT_EQ(s.removed, in_pore);
+  EXPECT_LT(s.substrate, 2 * 24 * 24);  // the substrate slab is cut too
+  // The box loses the pore volume fraction exactly (grid of 20 cells per pore diameter) ...
+  EXPECT_NEAR(union_fraction(in.box, o.pores, 0.0, 0.0, 26.0, 0.4), 26.0 * std::numbers::pi / 6.0 * 512.0 / 14976.0,
+              0.005);
+  // ... and the particles above the substrate those whose centres lie within R + r of a pore.
+  EXPECT_NEAR(s.porosity, union_fraction(in.box, o.pores, 0.5, 2.0, 26.0, 0.4), 0.02);
+}
+
+// Random pores packed at a spacing: D = 8 cut spheres packed as spheres of 1.25 x 8 = 10, so no
+// two centres are closer than 10 (the interpore walls are at least 2 thick), and the fraction
+// counted is that of the packed spheres.
+TEST(Opal, RandomPoresAtASpacingKeepTheirCentresThatFarApart) {
+  RandomPores rp;
+  rp.diameter = 8.0;
+  rp.count = 14;  // packed fraction 14 x 523.6 / 14976 = 0.49
+  rp.periodic = true;
+  rp.spacing_ratio = 1.25;
+  Random rng(7);
+  const Packing in = sc_lattice(24, 24, 26);
+  const PoreSet pores = random_pores(in.box, rp, rng);
+  Box all_periodic = in.box;
+  all_periodic.periodic = {true, true, true};
+  for (std::size_t i = 0; i < 14; ++i) {
+    EXPECT_EQ(pores.radius[i], 4.0);
+    for (std::size_t j = 0; j < i; ++j)
+      EXPECT_GE(norm(all_periodic.minimum_image(pores.centre[i] - pores.centre[j])), 10.0 * (1.0 - 1e-3));
+  }
+  rp.count = 21;  // packed fraction 0.73
+  EXPECT_NE(error_of([&] { random_pores(in.box, rp, rng); }).find("< 0.7"), std::string::npos);
+  rp.spacing_ratio = 0.4;
+  EXPECT_NE(error_of([&] { random_pores(in.box, rp, rng); }).find("pore_spacing = 0.4"), std::string::npos);
 }
 
 TEST(Opal, BadInputNamesKeyValueAndRange) {

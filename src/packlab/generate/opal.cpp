@@ -210,22 +210,45 @@ PoreSet fcc_pores(const Box& box, const FccPores& fcc, double pore_floor) {
 PoreSet random_pores(const Box& region, const RandomPores& o, Random& rng) {
   require(o.diameter > 0.0 && std::isfinite(o.diameter), "pore_diameter", o.diameter, "> 0 m");
   require(o.count >= 1, "pores", static_cast<double>(o.count), ">= 1");
-  const double fraction = static_cast<double>(o.count) * sphere_volume(0.5 * o.diameter) / region.volume();
-  require(fraction < 0.6, "pore volume fraction (pores x pi D^3/6 / region volume)", fraction,
-          "< 0.6 (non-overlapping pores; use fewer pores or a larger box)");
+  require(o.spacing_ratio >= 0.5 && o.spacing_ratio <= 2.0, "pore_spacing", o.spacing_ratio,
+          "in [0.5, 2] (minimum pore centre distance / pore diameter)");
+  const double R = 0.5 * o.diameter;
+  const double fraction = static_cast<double>(o.count) * sphere_volume(o.spacing_ratio * R) / region.volume();
+  require(fraction < 0.7, "pore volume fraction (pores x pi (spacing D)^3/6 / region volume)", fraction,
+          "< 0.7 (non-overlapping pores; use fewer pores or a larger box)");
+  Box fba_box = region;
+  if (o.periodic) fba_box.periodic = {true, true, true};
   FbaParams fp;
   fp.target_porosity = 1.0 - fraction;
   fp.tolerance = o.fba_tolerance;
   fp.max_iterations = o.fba_max_iterations;
-  FbaResult r = fba_pack(region, std::vector<double>(static_cast<std::size_t>(o.count), 1.0), fp, rng);
+  if (o.periodic) fp.shrink_rate = 0.001;
+  FbaResult r = fba_pack(fba_box, std::vector<double>(static_cast<std::size_t>(o.count), 1.0), fp, rng);
   if (r.status.stop != FbaStop::target_reached)
     fail_input(
         fmt::format("pores = {}: the force-biased algorithm did not separate the pores in {} iterations "
-                    "(max overlap {:g}); use fewer pores",
-                    o.count, o.fba_max_iterations, r.status.max_overlap));
+                    "(max overlap {:g}); use fewer pores{}",
+                    o.count, o.fba_max_iterations, r.status.max_overlap,
+                    o.periodic ? "" : " or periodic pores (pore_boundary = periodic)"));
   PoreSet pores;
   pores.centre = std::move(r.packing.position);
-  pores.radius.assign(pores.centre.size(), 0.5 * o.diameter);
+  // Periodic pores along the region's open axes: the image of a pore that crosses a face enters
+  // at the opposite face (images of images too, for a pore at an edge or a corner).
+  for (int a = 0; a < 3 && o.periodic; ++a) {
+    if (region.periodic[a]) continue;
+    const std::size_t n = pores.centre.size();
+    for (std::size_t k = 0; k < n; ++k) {
+      Vec3 image = pores.centre[k];
+      if (image[a] - region.lo[a] < R)
+        image[a] += region.length[a];
+      else if (region.hi()[a] - image[a] < R)
+        image[a] -= region.length[a];
+      else
+        continue;
+      pores.centre.push_back(image);
+    }
+  }
+  pores.radius.assign(pores.centre.size(), R);
   return pores;
 }
 

@@ -61,12 +61,12 @@ int opal_bond_material_of(int type_i, int type_j);
 
 // Orientation of the FCC pore lattice: which crystal direction lies along z.
 enum class FccOrientation { z111, z100 };
-std::string fcc_orientation_name(FccOrientation o);           // "111", "100"
+std::string fcc_orientation_name(FccOrientation o);            // "111", "100"
 FccOrientation fcc_orientation_from_name(const std::string&);  // InputError naming the key
 
 // FCC lattice of pores of equal diameter.
 struct FccPores {
-  double diameter = 0.0;               // pore diameter D [m], > 0
+  double diameter = 0.0;  // pore diameter D [m], > 0
   FccOrientation orientation = FccOrientation::z111;
   // Nearest-neighbour distance between pore centres / D, in [0.5, 2]: 1 = touching pores
   // (pore volume fraction 0.7405, the paper's 74 %); < 1 overlapping pores (wider openings,
@@ -100,12 +100,30 @@ struct PoreSet {
 PoreSet fcc_pores(const Box& box, const FccPores& fcc, double pore_floor);
 
 // Random pores (§4): `count` pores of `diameter` placed by the force-biased algorithm
-// (generate/fba.hpp) in `region` (its periodic axes as given; walls on the others), so that
-// they do not overlap beyond the FBA tolerance. The pore volume fraction count x pi D^3/6 /
-// V(region) must be below 0.6. `region` is typically the particle box above the substrate.
+// (generate/fba.hpp) in `region`, so that they do not overlap beyond the FBA tolerance.
+//  - periodic = false: the region's periodic axes as given, walls on the others (every pore
+//    wholly inside the region, typically the particle box above the substrate).
+//  - periodic = true: the pore packing is periodic along every axis of the region (a pore may
+//    cut the sample's faces, as the paper's pores reach its fixed layer, §2.1); a pore that
+//    crosses a face along an axis where `region` itself is open is returned together with its
+//    image at the opposite face, so the region loses exactly the pore volume fraction
+//    count x pi D^3/6 / V(region). Walls lower the density a pore packing can reach near them,
+//    so only this mode reaches the paper's porosities up to 0.63 (docs/opal-build.md).
+// The pore volume fraction must be below 0.7 (the FBA's lowest porosity, 0.30). Periodic pores
+// are packed with a ten times slower contraction (FbaParams::shrink_rate 0.001): the default 0.01
+// jams 77 pores at fraction 0.63 in a periodic box (3 seeds of 3 stop at max_iterations with
+// overlaps 1.3e-3-5.5e-3), 0.001 reaches it in 580-1,050 iterations (3 of 3). Walled pores keep
+// the default (the packings of the first version, bit for bit).
+// spacing_ratio (as FccPores::spacing_ratio): the pores are packed as spheres of diameter
+// spacing_ratio x D, so their centres are at least that far apart, and the volume fraction
+// above is that of the packed spheres; 1 = the pores themselves. docs/opal.md keeps the paper's
+// relative interpore opening at a coarser resolution this way (D/d = 9.2: D = 138 nm cut
+// spheres packed at 150 nm, the FCC opal's 138 nm pores at 150 nm spacing).
 struct RandomPores {
   double diameter = 0.0;  // [m], > 0
   long count = 0;         // > 0
+  bool periodic = false;
+  double spacing_ratio = 1.0;  // in [0.5, 2]
   double fba_tolerance = 1e-3;
   long fba_max_iterations = 200000;
 };
@@ -126,8 +144,8 @@ struct OpalOptions {
   // Openings filter: a coating candidate is kept when its distance to the nearest remaining
   // silica particle's surface is <= opening_distance_ratio x (L_coat + R_p); 1 = the paper's rule.
   double opening_distance_ratio = 1.0;
-  double substrate_layers = 2.0;   // substrate slab thickness in mean particle diameters, >= 0
-  double bond_cutoff_ratio = 1.75; // bond when d < ratio (R_i + R_j); in [1, 2)
+  double substrate_layers = 2.0;    // substrate slab thickness in mean particle diameters, >= 0
+  double bond_cutoff_ratio = 1.75;  // bond when d < ratio (R_i + R_j); in [1, 2)
   // Bond radius = ratio x the smaller particle radius. Not stored per bond: recorded here and
   // in the report, and applied by the bond law at test time (dem::ElasticBond::Params).
   double bond_radius_ratio = 1.0;
@@ -143,17 +161,17 @@ struct OpalOptions {
 // Figures of the built model. "Sample" = the part of the box above the substrate slab.
 struct OpalSummary {
   long input_particles = 0;
-  long particles = 0;            // in the model (structural + coating + substrate)
-  long structural = 0;           // silica
-  long coating = 0;              // titania
-  long substrate = 0;            // fixed
-  long removed = 0;              // cut out by the pores
-  long coating_openings = 0;     // candidates dropped to keep interpore openings free
+  long particles = 0;         // in the model (structural + coating + substrate)
+  long structural = 0;        // silica
+  long coating = 0;           // titania
+  long substrate = 0;         // fixed
+  long removed = 0;           // cut out by the pores
+  long coating_openings = 0;  // candidates dropped to keep interpore openings free
   long pores = 0;
   long bonds = 0;
   std::array<long, 3> bonds_by_material{0, 0, 0};  // silica, titania, substrate
-  long periodic_bonds = 0;       // bonds to a periodic image (image != 0)
-  double mean_coordination = 0;  // 2 bonds / particles
+  long periodic_bonds = 0;                         // bonds to a periodic image (image != 0)
+  double mean_coordination = 0;                    // 2 bonds / particles
   // Macro porosity of the sample: 1 - V(particles kept) / V(particles before cutting), both over
   // the particles above the substrate (the pore fraction, 0.74 for touching FCC pores).
   double porosity = 0;
@@ -163,9 +181,9 @@ struct OpalSummary {
   // Sample density [kg/m^3]: sum over components of (component particle volume / particle
   // volume before cutting) x continuum density, over the sample (§4's estimate).
   double density = 0;
-  double pore_diameter = 0;      // mean [m]
+  double pore_diameter = 0;           // mean [m]
   double mean_particle_diameter = 0;  // [m]
-  double substrate_top = 0;      // z of the substrate slab's top [m]
+  double substrate_top = 0;           // z of the substrate slab's top [m]
   double bond_radius_ratio = 1;
   bool lattice_commensurate = true;  // FCC pores fit the periodic box (no seam)
   double seconds = 0;

@@ -440,6 +440,7 @@ generate::OpalOptions OpalBuildOptions::resolve(const Packing& in, nlohmann::jso
   nlohmann::json report;
   if (pores == "fcc") {
     if (pore_count > 0 || pore_fraction > 0.0) fail_input("pore_count / pore_fraction: only with pores = random");
+    if (pore_boundary != "walls") fail_input("pore_boundary = " + pore_boundary + ": only with pores = random");
     o.fcc.diameter = D;
     o.fcc.orientation = generate::fcc_orientation_from_name(orientation);
     o.fcc.spacing_ratio = pore_spacing;
@@ -457,12 +458,19 @@ generate::OpalOptions OpalBuildOptions::resolve(const Packing& in, nlohmann::jso
   } else if (pores == "random") {
     if ((pore_count > 0) == (pore_fraction > 0.0))
       fail_input("pore_count and pore_fraction: give exactly one of them with pores = random");
-    const Box region = generate::random_pore_region(in, o.substrate_layers);
+    if (pore_boundary != "walls" && pore_boundary != "periodic")
+      fail_input("pore_boundary = " + pore_boundary + ": must be walls or periodic");
     generate::RandomPores rp;
     rp.diameter = D;
-    const double v_pore = std::numbers::pi / 6.0 * D * D * D;
+    rp.periodic = pore_boundary == "periodic";
+    // Periodic pores fill the whole box (they may reach into the substrate slab, as the paper's
+    // reach its fixed layer); walled pores stay above the substrate.
+    const Box region = rp.periodic ? in.box : generate::random_pore_region(in, o.substrate_layers);
+    rp.spacing_ratio = pore_spacing;
+    const double D_packed = pore_spacing * D;  // the packed spheres (RandomPores::spacing_ratio)
+    const double v_pore = std::numbers::pi / 6.0 * D_packed * D_packed * D_packed;
     if (pore_fraction > 0.0) {
-      require(pore_fraction < 0.6, "pore_fraction", pore_fraction, "in (0, 0.6)");
+      require(pore_fraction < 0.7, "pore_fraction", pore_fraction, "in (0, 0.7)");
       rp.count = std::max(1L, std::lround(pore_fraction * region.volume() / v_pore));
     } else {
       rp.count = pore_count;
@@ -470,6 +478,8 @@ generate::OpalOptions OpalBuildOptions::resolve(const Packing& in, nlohmann::jso
     Random rng(seed);
     o.pores = generate::random_pores(region, rp, rng);
     report = {{"arrangement", "random"},
+              {"boundary", pore_boundary},
+              {"spacing_ratio", pore_spacing},
               {"count", rp.count},
               {"pore_fraction_of_region", static_cast<double>(rp.count) * v_pore / region.volume()},
               {"region_lo_m", {region.lo.x, region.lo.y, region.lo.z}},
@@ -522,15 +532,20 @@ ConfigSchema opal_build_options(OpalBuildOptions& o) {
       .range(ranges::non_negative)
       .text("orientation", o.orientation, "FCC direction along z: 111 or 100")
       .number("pore_spacing", o.pore_spacing,
-              "FCC nearest-neighbour pore distance / D (1 = touching, < 1 = wider openings)")
+              "FCC nearest-neighbour pore distance / D (1 = touching, < 1 = wider openings); random pores: "
+              "packed as spheres of this x D (pore_fraction is theirs)")
       .range({0.5, 2.0, false, false})
       .numbers("pore_origin", o.pore_origin,
                "A pore lattice point X,Y,Z (default: box corner in x, y; lowest layer just above the substrate)")
       .unit("m")
       .integer("pore_count", o.pore_count, "Random pores: number of pores (or pore_fraction)")
       .range(ranges::non_negative)
-      .number("pore_fraction", o.pore_fraction, "Random pores: pore volume fraction of the region above the substrate")
-      .range({0.0, 0.6, false, true})
+      .number("pore_fraction", o.pore_fraction,
+              "Random pores: pore volume fraction of the region (above the substrate; the whole box if periodic)")
+      .range({0.0, 0.7, false, true})
+      .text("pore_boundary", o.pore_boundary,
+            "Random pores: walls (inside the box above the substrate) or periodic (the pore packing periodic in z too; "
+            "pores cut the faces)")
       .integer("seed", o.seed, "Seed of the random generator (random pores)");
   add_opal_params(schema, o.opal);
   return schema;

@@ -167,6 +167,9 @@ struct OpalBuildOptions {
   std::vector<double> pore_origin;  // a pore lattice point X, Y, Z [m]; empty: automatic
   long pore_count = 0;              // random pores: their number; or pore_fraction
   double pore_fraction = 0.0;
+  // random pores: walls (every pore inside the box above the substrate) | periodic (the pore
+  // packing periodic along z too, over the whole box: pores cut the top and bottom faces)
+  std::string pore_boundary = "walls";
   generate::OpalOptions opal;
   std::uint64_t seed = 1;
 
