@@ -17,7 +17,8 @@
 # usage: examples/reproduction/vem_doh_ns8000.sh OUT [PACKLAB] [SEEDS] [N_V...]
 #   SEEDS: a list like "1 2 3" (default); N_V: default 16000 13000 8000 4000 2000 1000 400 (400 is
 #   the VEM paper's smallest, n = 0.05, run with max_q 3; its C is not in Table 2: 4.69 is used).
-#   NS=... sets another N_S (tests of the script only).
+#   NS=... sets another N_S (tests of the script only); VEM_OPTIONS="..." adds options to the VEM
+#   runs (variations such as Table 1's other structural stiffness, docs/reproduction.md).
 #   Cost on one core: VEM 9-30 min per run, the two tests 2-3 min; run two copies with different
 #   SEEDS or N_V lists on two cores.
 set -euo pipefail
@@ -57,7 +58,7 @@ for seed in $SEEDS; do
       else
         timed vem "$d" "$B" generate vem --structural "${NS:-8000}" --voids "$nv" --phi-s 0.4 --seed "$seed" \
           --threads 1 --max-q "$maxq" --stop-min-coordination "$c" --snapshot-every 1 --no-plots --quiet \
-          --out "$d/vem"
+          ${VEM_OPTIONS:-} --out "$d/vem"
       fi
     fi
     # The two end points out of the snapshots (the snapshot of a cycle is the row of that cycle).
