@@ -401,11 +401,12 @@ def end_points_table(data):
         m, sd = mean_sd(values)
         return f"{m:.{digits}f}" + (f" ± {sd:.{digits}f}" if len(values) > 1 else "")
     for (nv, end), rs in sorted(groups.items(), key=lambda kv: (kv[0][0], kv[0][1] != "stage3")):
-        a, c, gp, sd = DOH_TABLE2_VEM.get(nv, (float("nan"),) * 4)
+        # N_V = 400 (the VEM paper's n = 0.05) is not in Table 2: no paper values, C = 4.69 taken.
+        a, c, gp, sd = (f"{v:g}" for v in DOH_TABLE2_VEM[nv]) if nv in DOH_TABLE2_VEM else ("—",) * 4
         lines.append(f"| {nv} | {'stage III' if end == 'stage3' else 'C = paper'} | {len(rs)} | "
-                     f"{fmt([r['q_end'] for r in rs], 3)} | {fmt([r['a'] for r in rs], 3)} ({a:g}) | "
-                     f"{fmt([r['coordination'] for r in rs], 2)} ({c:g}) | "
-                     f"{fmt([float(r['storage_modulus']) * 1e-6 for r in rs], 3)} ({gp:g} ± {sd:g}) | "
+                     f"{fmt([r['q_end'] for r in rs], 3)} | {fmt([r['a'] for r in rs], 3)} ({a}) | "
+                     f"{fmt([r['coordination'] for r in rs], 2)} ({c}) | "
+                     f"{fmt([float(r['storage_modulus']) * 1e-6 for r in rs], 3)} ({gp}" + (f" ± {sd}" if sd != "—" else "") + ") | "
                      f"{statistics.mean(float(r['std']) for r in rs) * 1e-6:.3f} |")
     return "\n".join(lines)
 
