@@ -17,12 +17,12 @@ usage: porosity_tables.py STUDY_OUT [DATA]   (DATA defaults to docs/data of this
        the packlab Python module for the fits: PYTHONPATH=python:build/python)"""
 
 import csv
-import math
 import os
 import sys
 
 import packlab
-from packlab.tables import atomic_output
+from packlab.reproduction import mean_sd
+from packlab.tables import write_table
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 SAMPLE_COLUMNS = ["pore_fraction", "seed", "pores", "pore_fraction_of_box", "porosity", "particles", "bonds",
@@ -34,19 +34,8 @@ FIELDS = {"pores": "opal.parameters.pores.count", "pore_fraction_of_box": "opal.
 
 
 def write(path, header, rows, comment):
-    with atomic_output(path, ".porosity_tables-") as tmp, open(tmp, "w", newline="") as f:
-        f.write(f"# {comment}\n")
-        w = csv.DictWriter(f, fieldnames=header, lineterminator="\n")
-        w.writeheader()
-        for r in rows:
-            w.writerow({k: (f"{v:.8g}" if isinstance(v, float) else v) for k, v in r.items()})
+    write_table(path, {k: [r[k] for r in rows] for k in header}, comment)
     print(f"wrote {path} ({len(rows)} rows)")
-
-
-def mean_sd(values):
-    m = sum(values) / len(values)
-    sd = math.sqrt(sum((v - m) ** 2 for v in values) / (len(values) - 1)) if len(values) > 1 else 0.0
-    return m, sd
 
 
 def pore_free_modulus(data):
