@@ -114,8 +114,17 @@ void NeighborList::build(const Box& box, std::vector<Vec3>& position, const std:
   const std::vector<std::uint8_t> old_image = std::move(image_);
 
   threads = std::max(1, std::min(threads, std::max(1, n / 256)));
-  thread_partner_.resize(threads);
-  thread_image_.resize(threads);
+  // Thread 0 lists its chunk straight into partner_ and image_ (the whole list with one
+  // thread); the later chunks go to per-thread buffers appended after the region.
+  thread_partner_.resize(threads - 1);
+  thread_image_.resize(threads - 1);
+  // About the last list's share of pairs, with a margin: the count changes little between
+  // rebuilds, so thread 0's lists rarely regrow (a first build grows them as it goes).
+  partner_.clear();
+  image_.clear();
+  const std::size_t expected_pairs = old_partner.size() / static_cast<std::size_t>(threads);
+  partner_.reserve(expected_pairs + expected_pairs / 16);
+  image_.reserve(expected_pairs + expected_pairs / 16);
   first_.assign(n + 1, 0);
   std::vector<int> counts(n, 0);
   // Coincident or deeply overlapping particles would list up to n^2 pairs (memory exhausted,
@@ -130,8 +139,8 @@ void NeighborList::build(const Box& box, std::vector<Vec3>& position, const std:
 #pragma omp parallel num_threads(threads)
   errors.run(omp_get_thread_num(), [&] {
     const int t = omp_get_thread_num();
-    auto& tp = thread_partner_[t];
-    auto& ti = thread_image_[t];
+    auto& tp = t == 0 ? partner_ : thread_partner_[t - 1];
+    auto& ti = t == 0 ? image_ : thread_image_[t - 1];
     tp.clear();
     ti.clear();
     // Static contiguous chunks of i: concatenating the chunks in thread order gives the
@@ -229,10 +238,16 @@ void NeighborList::build(const Box& box, std::vector<Vec3>& position, const std:
       counts[i] = static_cast<int>(count);
     }
   });
-  if (errors.failed()) first_.clear();  // no half-built list survives
+  if (errors.failed()) {  // no half-built list survives
+    first_.clear();
+    partner_.clear();
+    image_.clear();
+  }
   errors.rethrow();
   if (crowded_particle >= 0) {
     first_.clear();  // no half-built list survives
+    partner_.clear();
+    image_.clear();
     fail_input(
         fmt::format("neighbour search: more than {} particles within interaction range of each particle on average "
                     "(particle {} at ({:g}, {:g}, {:g}) has {} partners): coincident or heavily overlapping particles",
@@ -240,11 +255,9 @@ void NeighborList::build(const Box& box, std::vector<Vec3>& position, const std:
                     position[crowded_particle].y, position[crowded_particle].z, counts[crowded_particle]));
   }
   for (int i = 0; i < n; ++i) first_[i + 1] = first_[i] + counts[i];
-  partner_.clear();
-  image_.clear();
   partner_.reserve(first_[n]);
   image_.reserve(first_[n]);
-  for (int t = 0; t < threads; ++t) {
+  for (int t = 0; t + 1 < threads; ++t) {
     partner_.insert(partner_.end(), thread_partner_[t].begin(), thread_partner_[t].end());
     image_.insert(image_.end(), thread_image_[t].begin(), thread_image_[t].end());
   }

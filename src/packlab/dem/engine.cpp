@@ -197,6 +197,18 @@ Engine::Engine(const Packing& packing, const EngineConfig& config) : packing_(pa
           static_cast<int>(b);
   }
   threads_ = config_.threads > 0 ? config_.threads : omp_get_max_threads();
+  // Everything per particle and per bond now lives in particles_, density_ and bonds_:
+  // packing() rebuilds the input's arrays from them.
+  input_has_density_ = !packing_.density.empty();
+  input_has_fixed_ = !packing_.fixed.empty();
+  packing_.position = {};
+  packing_.radius = {};
+  packing_.type = {};
+  packing_.velocity = {};
+  packing_.angular_velocity = {};
+  packing_.density = {};
+  packing_.fixed = {};
+  packing_.bonds = Bonds{};
 
   neighbors_.set_skin(config_.skin_ratio * r_max);
   neighbors_.set_reach(reach);
@@ -272,24 +284,43 @@ std::size_t Engine::intact_bonds() const {
 }
 
 Packing Engine::packing() const {
-  Packing out = packing_;
+  Packing out;
+  out.box = packing_.box;
+  out.fields = packing_.fields;
   const std::size_t n = particles_.size();
+  out.position.resize(n);
+  out.radius.resize(n);
+  out.type.resize(n);
   out.velocity.resize(n);
   out.angular_velocity.resize(n);
+  if (input_has_density_) out.density.resize(n);
+  if (input_has_fixed_) out.fixed.resize(n);
   // Total wraps since the input of each particle as written (internal wraps + this wrap).
   std::vector<std::array<int, 3>> total_wraps(wraps_);
   for (std::size_t k = 0; k < n; ++k) {
     const std::size_t i = static_cast<std::size_t>(original_index_[k]);
     out.position[i] = out.box.wrap(particles_.position[k], &total_wraps[k]);
     out.radius[i] = particles_.radius[k];
+    out.type[i] = particles_.type[k];
     out.velocity[i] = particles_.velocity[k];
     out.angular_velocity[i] = particles_.angular_velocity[k];
+    if (input_has_density_) out.density[i] = density_[k];
+    if (input_has_fixed_) out.fixed[i] = particles_.fixed[k];
   }
-  for (std::size_t b = 0; b < bonds_.i.size(); ++b) {
-    const auto& wi = total_wraps[static_cast<std::size_t>(bonds_.i[b])];
-    const auto& wj = total_wraps[static_cast<std::size_t>(bonds_.j[b])];
+  const std::size_t bond_count = bonds_.i.size();
+  out.bonds.i.resize(bond_count);
+  out.bonds.j.resize(bond_count);
+  out.bonds.image.resize(bond_count);
+  out.bonds.material = bonds_.material;
+  out.bonds.rest_length = bonds_.rest_length;
+  out.bonds.state = bonds_.state;
+  for (std::size_t b = 0; b < bond_count; ++b) {
+    const auto bi = static_cast<std::size_t>(bonds_.i[b]), bj = static_cast<std::size_t>(bonds_.j[b]);
+    out.bonds.i[b] = original_index_[bi];
+    out.bonds.j[b] = original_index_[bj];
+    const auto& wi = total_wraps[bi];
+    const auto& wj = total_wraps[bj];
     for (int a = 0; a < 3; ++a) out.bonds.image[b][a] = bonds_.image[b][a] + wj[a] - wi[a];
-    out.bonds.state[b] = bonds_.state[b];
   }
   return out;
 }

@@ -268,7 +268,9 @@ class Engine {
     std::vector<std::uint8_t> crossing_pair_acts;  // 1 if the pair acted (touched)
     std::vector<int> crossing_bonds;               // positions in bond_order_, ascending
     std::vector<Contribution> crossing_bond_results;
-    std::vector<BondBreak> breaks;  // this step
+    // Bonds that failed this step (their BondBreak is filled after the force loop: 4 bytes of
+    // room per bond of the range instead of a whole BondBreak).
+    std::vector<int> failed_bonds;
     Totals totals;
   };
   template <bool Measure>
@@ -302,7 +304,11 @@ class Engine {
   ContactGeometry wall_geometry(std::size_t k, const Wall& wall, double distance) const;
   const Material& params_of_type(int type) const;
 
-  Packing packing_;  // box, types, bonds and fields of the input; positions synced on demand
+  // The input's box and extra fields only: its per-particle arrays and bonds are moved into
+  // particles_ and bonds_ (in the engine's order) and rebuilt by packing(), so the engine does
+  // not hold the model twice (issue #14: bytes per particle and per bond).
+  Packing packing_;
+  bool input_has_density_ = false, input_has_fixed_ = false;  // packing() gives them back
   EngineConfig config_;
   ParticleStore particles_;
   std::vector<double> damping_;  // per particle alpha

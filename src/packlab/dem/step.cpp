@@ -80,7 +80,7 @@ void Engine::partition_work() {
     // A bond breaks at most once per step and each is evaluated by one thread: with room for
     // all of this range's bonds, recording a break never allocates, so nothing in the step's
     // parallel region can throw (an exception there, between barriers, would abort).
-    w.breaks.reserve(static_cast<std::size_t>(bond_first_[w.particle_end] - bond_first_[w.particle_begin]));
+    w.failed_bonds.reserve(static_cast<std::size_t>(bond_first_[w.particle_end] - bond_first_[w.particle_begin]));
   }
 }
 
@@ -267,7 +267,7 @@ void Engine::bond_contribution(BondModel<BondLaw>& model, std::size_t b, Contrib
   const BondForce f = BondLaw::evaluate(g, params, model.history[b]);
   if (f.failed) {
     ++work.totals.bond_breaks;
-    work.breaks.push_back(BondBreak{b, time_, box.wrap(P.position[i] + 0.5 * d)});
+    work.failed_bonds.push_back(static_cast<int>(b));
   }
   if (f.broken) {
     bonds_.state[b] = 1;
@@ -341,7 +341,7 @@ void Engine::pair_forces(ContactModel<Law>& model, Totals& totals) {
     const int t = omp_get_thread_num();
     ThreadWork& work = work_[static_cast<std::size_t>(t)];
     work.totals = Totals{};
-    work.breaks.clear();
+    work.failed_bonds.clear();
     Totals& local = work.totals;
     PairBlock<Law> block;
     const std::uint8_t no_crossing = 0;
@@ -493,7 +493,15 @@ void Engine::pair_forces(ContactModel<Law>& model, Totals& totals) {
   for (const ThreadWork& work : work_) {
     totals.max_stiffness_over_mass = std::max(totals.max_stiffness_over_mass, work.totals.max_stiffness_over_mass);
     totals.bond_breaks += work.totals.bond_breaks;
-    breaks_.insert(breaks_.end(), work.breaks.begin(), work.breaks.end());
+    // Where each failed: the middle of the bond, from the positions of this step's force
+    // evaluation (the particles move only in integrate()).
+    for (const int b : work.failed_bonds) {
+      const auto bond = static_cast<std::size_t>(b);
+      const Vec3& xi = particles_.position[static_cast<std::size_t>(bonds_.i[bond])];
+      const Vec3 d = particles_.position[static_cast<std::size_t>(bonds_.j[bond])] +
+                     packing_.box.shift_vector(bond_image_now(bond)) - xi;
+      breaks_.push_back(BondBreak{bond, time_, packing_.box.wrap(xi + 0.5 * d)});
+    }
     if constexpr (Measure) {
       totals.contacts += work.totals.contacts;
       totals.max_overlap_ratio = std::max(totals.max_overlap_ratio, work.totals.max_overlap_ratio);
