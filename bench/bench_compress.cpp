@@ -20,6 +20,7 @@
 #include <cstdlib>
 #include <string>
 
+#include "memory_report.hpp"
 #include "opal_case.hpp"
 #include "packlab/mechanics/opal_materials.hpp"
 #include "packlab/mechanics/uniaxial_compression.hpp"
@@ -73,6 +74,7 @@ int main(int argc, char** argv) {
              model.bonds.size(), threads, steps, seconds, engine.time_step());
   fmt::print("memory: {:.0f} bytes per particle (engine without bonds: {:.1f} MB), {:.0f} bytes per bond\n",
              per_particle, static_cast<double>(bytes_bare) * 1e-6, per_bond);
+  print_engine_memory(engine);  // after the run: with the plate's wall history and the step's sums
   fmt::print(
       "packlab compress N={} bonds={} threads={} pts_per_s={:.4g} bond_steps_per_s={:.4g} bytes_per_particle={:.0f} "
       "bytes_per_bond={:.0f}\n",

@@ -2,7 +2,8 @@
 // r = 0.25 um, rho = 3690 kg/m3, Park-Miller random centres (seed 12345) in a periodic cube at
 // nominal phi 0.70, kn = 1000 N/m, ks = 10 N/m, mu = 0.1, dt = 0.2 sqrt(m/kn), 20,000 steps.
 // packlab uses Cundall local damping 0.7 (as YADE); LAMMPS uses viscous damping 0.3.
-// usage: bench_relax [THREADS] [STEPS]; last line: packlab relax N=... pts_per_s=...
+// usage: bench_relax [THREADS] [STEPS]; last line: packlab relax N=... pts_per_s=... bytes_per_particle=...
+// (the engine's heap by part on the line before, bench/memory_report.hpp)
 #include <fmt/format.h>
 
 #include <chrono>
@@ -10,6 +11,7 @@
 #include <cstdlib>
 #include <numbers>
 
+#include "memory_report.hpp"
 #include "packlab/core/thread_wait.hpp"
 #include "packlab/dem/engine.hpp"
 
@@ -49,7 +51,9 @@ int main(int argc, char** argv) {
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   fmt::print("packlab threads={} final mean contacts/particle={:.3f} unbalanced={:.3g} neighbor_builds={}\n", threads,
              d.mean_coordination, d.unbalanced_force_ratio, engine.neighbor_builds());
-  fmt::print("packlab relax N={} steps={} wall_s={:.3f} pts_per_s={:.4g}\n", n, steps, wall,
-             static_cast<double>(n) * static_cast<double>(steps) / wall);
+  bench::print_engine_memory(engine);
+  fmt::print("packlab relax N={} steps={} wall_s={:.3f} pts_per_s={:.4g} bytes_per_particle={:.0f}\n", n, steps, wall,
+             static_cast<double>(n) * static_cast<double>(steps) / wall,
+             static_cast<double>(engine.memory().total()) / static_cast<double>(n));
   return 0;
 }

@@ -315,3 +315,77 @@ TEST(Engine, ARunThatTurnsNonFiniteStopsAtTheNextMeasuredStepNamingAParticle) {
     EXPECT_NE(message.find("time step"), std::string::npos) << message;
   }
 }
+
+// The engine keeps one copy of the model (its own order): packing() rebuilds the input's
+// arrays and bonds from it, so a fresh engine gives back exactly what it was given, in the
+// input's order, whatever the engine's spatial sort did to it.
+TEST(Engine, PackingGivesBackTheInputArraysAndBondsInTheirOrder) {
+  Packing p;
+  p.box.length = {6, 6, 6};
+  p.box.periodic = {true, false, false};
+  // Scattered so that the spatial sort reorders them; the last two touch through x.
+  const std::vector<Vec3> at = {{5.1, 1, 1}, {1.2, 4.8, 3}, {3, 3, 5}, {0.4, 1, 1}, {2.5, 0.9, 4.1}, {5.8, 3, 3}};
+  for (std::size_t k = 0; k < at.size(); ++k) p.add(at[k], 0.4 + 0.01 * static_cast<double>(k), k % 2 ? 1 : 0);
+  p.velocity = {{1, 0, 0}, {0, 2, 0}, {0, 0, 3}, {-1, 0, 0}, {0, -2, 0}, {0, 0, -3}};
+  p.angular_velocity = {{0, 0, 1}, {0, 1, 0}, {1, 0, 0}, {0, 0, -1}, {0, -1, 0}, {-1, 0, 0}};
+  p.density = {1000, 1100, 1200, 1300, 1400, 1500};
+  p.fixed = {0, 1, 0, 0, 1, 0};
+  p.field_or_add("label").values = {10, 11, 12, 13, 14, 15};
+  p.bonds.add(0, 3, {1, 0, 0}, 0, 1.3);  // through the periodic x boundary
+  p.bonds.add(4, 1, {0, 0, 0}, 1, 4.0);
+  p.bonds.add(2, 5, {0, 0, 0}, 0, 3.4, 1);  // broken
+  EngineConfig config;
+  config.types = {Material{100.0, 10.0, 0.0, 1000.0, 0.0}, Material{200.0, 20.0, 0.0, 2000.0, 0.0}};
+  config.stiffness_rule = StiffnessRule::contact;
+  config.bond_materials = BondMaterialList<ContactBond>{{800.0, 80.0, 1e9, 1e9}, {900.0, 90.0, 1e9, 1e9}};
+  config.threads = 1;
+  const Engine engine(p, config);
+  const Packing out = engine.packing();
+  EXPECT_EQ(out.position, p.position);
+  EXPECT_EQ(out.radius, p.radius);
+  EXPECT_EQ(out.type, p.type);
+  EXPECT_EQ(out.density, p.density);
+  EXPECT_EQ(out.fixed, p.fixed);
+  EXPECT_EQ(out.angular_velocity[0], p.angular_velocity[0]);
+  EXPECT_EQ(out.velocity[2], p.velocity[2]);
+  EXPECT_EQ(out.velocity[1], Vec3{});  // fixed: at rest
+  ASSERT_EQ(out.fields.size(), 1u);
+  EXPECT_EQ(out.fields[0].values, p.fields[0].values);
+  EXPECT_EQ(out.bonds.i, p.bonds.i);
+  EXPECT_EQ(out.bonds.j, p.bonds.j);
+  EXPECT_EQ(out.bonds.image, p.bonds.image);
+  EXPECT_EQ(out.bonds.material, p.bonds.material);
+  EXPECT_EQ(out.bonds.rest_length, p.bonds.rest_length);
+  EXPECT_EQ(out.bonds.state, p.bonds.state);
+  // Without density and fixed in the input, none in the output either.
+  p.density.clear();
+  p.fixed.clear();
+  const Packing plain = Engine(p, config).packing();
+  EXPECT_TRUE(plain.density.empty());
+  EXPECT_TRUE(plain.fixed.empty());
+}
+
+// memory() counts what the engine holds by part: at least the arrays every particle, listed
+// pair and bond needs, and the bonds' part grows with the bonds by their list and law state.
+TEST(Engine, MemoryReportCountsParticlesPairsAndBonds) {
+  Packing p = test::open_cube(8);
+  for (int k = 0; k < 64; ++k) p.add({1.0 + (k % 4) * 1.9, 1.0 + (k / 4 % 4) * 1.9, 1.0 + (k / 16) * 1.9}, 1.0);
+  EngineConfig config;
+  config.types = {Material{100.0, 10.0, 0.0, 1000.0, 0.0}};
+  config.threads = 1;
+  const Engine bare(p, config);
+  const EngineMemory m = bare.memory();
+  const std::size_t n = p.size();
+  // Position, velocity, spin, force, torque, radius, masses and inertias at least.
+  EXPECT_GE(m.particles, n * (5 * sizeof(Vec3) + 5 * sizeof(double)));
+  ASSERT_GT(bare.listed_pairs(), 0u);
+  EXPECT_GE(m.listed_pairs, bare.listed_pairs() * (2 * sizeof(int) + 1));  // partner, image, owner
+  EXPECT_GE(m.contact_history, bare.listed_pairs() * sizeof(Vec3));        // linear law: a shear force
+  EXPECT_EQ(m.bonds, 0u);
+  EXPECT_EQ(m.total(), m.particles + m.neighbor_list + m.listed_pairs + m.contact_history + m.bonds + m.threads);
+  for (int k = 0; k + 1 < 64; k += 2) p.bonds.add(k, k + 1, {0, 0, 0}, 0, 1.9);
+  config.bond_materials = BondMaterialList<ContactBond>{{800.0, 80.0, 1e9, 1e9}};
+  const EngineMemory bonded = Engine(p, config).memory();
+  // i, j, image, material, rest length, state, pair index, order; the shear force.
+  EXPECT_GE(bonded.bonds, p.bonds.size() * (6 * sizeof(int) + 3 * sizeof(int) + sizeof(double) + sizeof(Vec3)));
+}

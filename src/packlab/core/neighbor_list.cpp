@@ -282,6 +282,23 @@ void NeighborList::build(const Box& box, std::vector<Vec3>& position, const std:
   ++builds_;
 }
 
+namespace {
+template <class T>
+std::size_t held(const std::vector<T>& v) {
+  return v.capacity() * sizeof(T);
+}
+}  // namespace
+
+NeighborList::Memory NeighborList::memory() const {
+  Memory m;
+  m.per_particle_arrays = held(first_) + held(position_at_build_) + held(radius_at_build_) + held(cell_start_) +
+                          held(cell_particles_) + held(particle_cell_) + held(cell_position_) + held(cell_radius_);
+  m.per_pair_arrays = held(partner_) + held(image_) + held(previous_index_);
+  for (const auto& v : thread_partner_) m.per_pair_arrays += held(v);
+  for (const auto& v : thread_image_) m.per_pair_arrays += held(v);
+  return m;
+}
+
 bool NeighborList::needs_rebuild(const std::vector<Vec3>& position, const std::vector<double>& radius) const {
   const std::size_t n = position.size();
   if (position_at_build_.size() != n || radius_at_build_.size() != n) return true;

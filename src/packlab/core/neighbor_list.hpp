@@ -21,9 +21,7 @@ namespace packlab {
 
 // Image code 0..26 <-> shift (sx, sy, sz) in {-1,0,1}^3; 13 is the unshifted image.
 inline constexpr int image_code(int sx, int sy, int sz) { return (sx + 1) + 3 * (sy + 1) + 9 * (sz + 1); }
-inline constexpr std::array<int, 3> image_of_code(int code) {
-  return {code % 3 - 1, (code / 3) % 3 - 1, code / 9 - 1};
-}
+inline constexpr std::array<int, 3> image_of_code(int code) { return {code % 3 - 1, (code / 3) % 3 - 1, code / 9 - 1}; }
 inline constexpr int unshifted_image = 13;
 
 class NeighborList {
@@ -41,8 +39,8 @@ class NeighborList {
   // `threads` > 0 builds in parallel; the result does not depend on the thread count.
   // `wraps` (optional, one entry per particle) accumulates the box lengths each particle was
   // wrapped by, so callers can keep unwrapped trajectories and bond images.
-  void build(const Box& box, std::vector<Vec3>& position, const std::vector<double>& radius,
-             int threads = 1, std::vector<std::array<int, 3>>* wraps = nullptr);
+  void build(const Box& box, std::vector<Vec3>& position, const std::vector<double>& radius, int threads = 1,
+             std::vector<std::array<int, 3>>* wraps = nullptr);
 
   // True when some pair may have come within contact range without being listed.
   bool needs_rebuild(const std::vector<Vec3>& position, const std::vector<double>& radius) const;
@@ -60,6 +58,12 @@ class NeighborList {
   // Displacement of image code c in the box the list was built for.
   const Vec3& image_offset(int code) const { return offsets_[code]; }
   long builds() const { return builds_; }
+  // Heap bytes held (capacities): per particle (index, positions and radii at the build, the
+  // cell arrays) and per listed pair (partner, image, the history map, per-thread lists).
+  struct Memory {
+    std::size_t per_particle_arrays = 0, per_pair_arrays = 0;
+  };
+  Memory memory() const;
 
   // Exact state (pairs and the positions/radii at the last build) for checkpoints.
   void save(std::ostream& out) const;

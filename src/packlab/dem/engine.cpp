@@ -173,6 +173,14 @@ Engine::Engine(const Packing& packing, const EngineConfig& config) : packing_(pa
     std::vector<int> internal(n);
     for (std::size_t k = 0; k < n; ++k) internal[static_cast<std::size_t>(original_index_[k])] = static_cast<int>(k);
     const Bonds& in = packing_.bonds;
+    // Exactly as many as there are (grown one by one, the lists would keep up to twice that).
+    bonds_.i.reserve(in.size());
+    bonds_.j.reserve(in.size());
+    bonds_.image.reserve(in.size());
+    bonds_.material.reserve(in.size());
+    bonds_.rest_length.reserve(in.size());
+    bonds_.state.reserve(in.size());
+    bonds_.pair.reserve(in.size());
     for (std::size_t b = 0; b < in.size(); ++b) {
       bonds_.i.push_back(internal[static_cast<std::size_t>(in.i[b])]);
       bonds_.j.push_back(internal[static_cast<std::size_t>(in.j[b])]);
@@ -281,6 +289,36 @@ std::size_t Engine::intact_bonds() const {
   std::size_t count = 0;
   for (int st : bonds_.state) count += st == 0;
   return count;
+}
+
+namespace {
+template <class T>
+std::size_t held(const std::vector<T>& v) {
+  return v.capacity() * sizeof(T);
+}
+}  // namespace
+
+EngineMemory Engine::memory() const {
+  EngineMemory m;
+  const ParticleStore& P = particles_;
+  m.particles = held(P.position) + held(P.velocity) + held(P.angular_velocity) + held(P.force) + held(P.torque) +
+                held(P.radius) + held(P.mass) + held(P.inertia) + held(P.inverse_mass) + held(P.inverse_inertia) +
+                held(P.type) + held(P.fixed) + held(damping_) + held(original_index_) + held(density_) + held(wraps_) +
+                held(stiffness_sum_) + held(measure_energy_) + held(measure_force_) + held(chunk_sums_) +
+                held(bond_first_);
+  const NeighborList::Memory list = neighbors_.memory();
+  m.neighbor_list = list.per_particle_arrays;
+  m.listed_pairs = list.per_pair_arrays + held(pair_owner_) + held(pair_bonded_);
+  std::visit([&](const auto& model) { m.contact_history = held(model.history) + held(model.wall_history); }, model_);
+  m.bonds = held(bonds_.i) + held(bonds_.j) + held(bonds_.image) + held(bonds_.material) + held(bonds_.rest_length) +
+            held(bonds_.state) + held(bonds_.pair) + held(bond_order_) + held(breaks_);
+  std::visit([&](const auto& model) { m.bonds += held(model.history); }, bond_model_);
+  for (const ThreadWork& w : work_) {
+    m.bonds += held(w.failed_bonds);
+    m.threads += held(w.crossing_pairs) + held(w.crossing_pair_results) + held(w.crossing_pair_acts) +
+                 held(w.crossing_bonds) + held(w.crossing_bond_results);
+  }
+  return m;
 }
 
 Packing Engine::packing() const {

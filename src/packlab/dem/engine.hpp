@@ -98,6 +98,18 @@ struct BondBreak {
   Vec3 position{};
 };
 
+// Heap bytes an engine holds (vector capacities), by what they store: what `bench_relax` and
+// `bench_compress` report per particle and per bond (docs/engine.md "Performance").
+struct EngineMemory {
+  std::size_t particles = 0;        // state, masses, damping, order, wraps, per-particle sums
+  std::size_t neighbor_list = 0;    // index, cells and the positions at the last build
+  std::size_t listed_pairs = 0;     // partners, images, history map, pair owners, bonded flags
+  std::size_t contact_history = 0;  // the contact law's per-pair history (shear springs)
+  std::size_t bonds = 0;            // bond list, the bond law's state, order and failure room
+  std::size_t threads = 0;          // per-thread crossing lists
+  std::size_t total() const { return particles + neighbor_list + listed_pairs + contact_history + bonds + threads; }
+};
+
 struct Diagnostics {
   long step = 0;
   double time = 0.0;                    // [s]
@@ -194,6 +206,8 @@ class Engine {
   double time() const { return time_; }
   int threads() const { return threads_; }
   long neighbor_builds() const { return neighbors_.builds(); }
+  std::size_t listed_pairs() const { return neighbors_.pair_count(); }
+  EngineMemory memory() const;
   std::size_t intact_bonds() const;
   // Axial strain (L - L0) / L0 of every bond (packing's bond order; positive = stretched);
   // NaN for bonds that have failed (relaxing or removed).

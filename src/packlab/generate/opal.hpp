@@ -128,6 +128,9 @@ struct RandomPores {
   long fba_max_iterations = 200000;
 };
 PoreSet random_pores(const Box& region, const RandomPores& options, Random& rng);
+// Volume of one pore as random_pores() packs it: a sphere of spacing_ratio x diameter, so that
+// count x this / region volume is the packed fraction it must stay below 0.7 for.
+double packed_pore_volume(const RandomPores& options);
 
 // The particle box above the substrate slab of `substrate_layers` mean diameters and one
 // largest particle radius (so no substrate particle lies in a pore): the region for

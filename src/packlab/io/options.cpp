@@ -467,8 +467,7 @@ generate::OpalOptions OpalBuildOptions::resolve(const Packing& in, nlohmann::jso
     // reach its fixed layer); walled pores stay above the substrate.
     const Box region = rp.periodic ? in.box : generate::random_pore_region(in, o.substrate_layers);
     rp.spacing_ratio = pore_spacing;
-    const double D_packed = pore_spacing * D;  // the packed spheres (RandomPores::spacing_ratio)
-    const double v_pore = std::numbers::pi / 6.0 * D_packed * D_packed * D_packed;
+    const double v_pore = generate::packed_pore_volume(rp);  // pore_fraction is that of the packed spheres
     if (pore_fraction > 0.0) {
       require(pore_fraction < 0.7, "pore_fraction", pore_fraction, "in (0, 0.7)");
       rp.count = std::max(1L, std::lround(pore_fraction * region.volume() / v_pore));
