@@ -18,6 +18,11 @@ if [ -f "$DATA/vem_doh_ns8000.csv" ]; then
     --out "$ROOT/docs/img/doh_fig6_cmatched.png"
   echo "wrote docs/data/doh_fig6_cmatched*.csv, docs/img/doh_fig6_cmatched.png from docs/data/vem_doh_ns8000.csv"
 fi
+# The opal resolution study (docs/opal.md "Finer resolution") extrapolated to the paper's D/d.
+if [ -f "$DATA/opal_resolution.csv" ]; then
+  "$PY" "$ROOT/examples/opal/resolution_extrapolation.py" "$DATA" > /dev/null
+  echo "wrote docs/data/opal_resolution_extrapolation.csv from docs/data/opal_resolution.csv"
+fi
 "$PY" -m packlab.reproduction collect "$DATA"
 "$PY" -m packlab.reproduction render "$DATA/reproduction.csv" "$ROOT/docs/reproduction.md"
 "$PY" -m packlab.plot vem_study relax "$DATA/vem_relax_study.csv" --out "$ROOT/docs/img/vem_relax_study.png"

@@ -73,6 +73,25 @@ def _paper_rows():
     rows["opal.eq24_b"] = (OPAL, "b of E = E0 exp(-b eps) (E0 of eq. 25)", "eq. 24", "2.99", "", "3.4e6")
     rows["opal.eq26_a"] = (OPAL, "sigma0 of strength = sigma0 exp(-b eps) [MPa]", "eq. 26", "576.3", "", "3.4e6")
     rows["opal.eq26_b"] = (OPAL, "b of eq. 26", "eq. 26", "3.85", "", "3.4e6")
+    # bpm-inverse-opals §2.1 and §3: the FCC opal of 8.05 um^2 x 2.01 um (80,000 particles and
+    # 843,000 bonds per um^3: 1.3 million particles) with the calibrated bonds (6.53 GPa, 94.3
+    # MPa), the pore-free bulk (Table 1, eq. 20) and the 20 nm titania coating (§4, Fig. 15).
+    rows["opal.coordination"] = (OPAL, "bonds per particle of the FCC opal model (\"average coordination number\")",
+                                 "§2.1", "10.5", "", "1.3e6")
+    rows["opal.E_paper_bonds"] = (OPAL, "E of the FCC opal [GPa], paper's bonds, largest D/d run", "§3", "1.7", "",
+                                  "1.3e6")
+    rows["opal.strength_paper_bonds"] = (OPAL, "strength of the FCC opal [MPa], paper's bonds, largest D/d run", "§3",
+                                         "41.1", "", "1.3e6")
+    rows["opal.size_study_E_dd51"] = (OPAL, "E of the FCC opal [GPa] extrapolated to the paper's D/d = 51", "§3",
+                                      "1.7", "", "1.3e6")
+    rows["opal.size_study_strength_dd51"] = (OPAL, "strength of the FCC opal [MPa] extrapolated to D/d = 51", "§3",
+                                             "41.1", "", "1.3e6")
+    rows["opal.K_E"] = (OPAL, "K_E = E_macro / E_b of the pore-free sample", "eq. 20, Table 1", "3.35", "", "")
+    rows["opal.bulk_strength"] = (OPAL, "strength of the pore-free sample [MPa]", "§3, Table 1", "601", "", "")
+    rows["opal.coating20_E"] = (OPAL, "E of the opal with 20 nm titania [GPa], paper's bonds", "§4, Fig. 15", "5.96",
+                                "", "2.5e6")
+    rows["opal.coating20_strength"] = (OPAL, "strength of the opal with 20 nm titania [MPa]", "§4, Fig. 15", "249",
+                                       "", "2.5e6")
     return rows
 
 
@@ -319,6 +338,63 @@ def opal_values(data):
     return out
 
 
+def opal_structure_values(data):
+    """The opal paper's rows of the FCC opal, the bulk and the coating (§2.1, §3, §4) from the
+    studies of docs/opal.md: the resolution study (opal_resolution.csv, D/d = 9.2-24.5, three
+    packings each, static solver) at its largest D/d and extrapolated to the paper's 51
+    (opal_resolution_extrapolation.csv, examples/opal/resolution_extrapolation.py), and the
+    reduced-resolution runs of examples/opal/run.sh (opal_runs.csv: one sample each)."""
+    out = {}
+    resolution = read_table(os.path.join(data, "opal_resolution.csv"))
+    if resolution:
+        def at_largest(column, scale=1.0):
+            rows = [r for r in resolution if r[column]]
+            largest = max(float(r["pore_to_particle_diameter"]) for r in rows)
+            rows = [r for r in rows if float(r["pore_to_particle_diameter"]) == largest]
+            m, s = mean_sd([float(r[column]) * scale for r in rows])
+            n = sorted(int(r["particles"]) for r in rows)
+            return m, s, len(rows), f"{n[0]}-{n[-1]}", largest
+
+        for key, column in (("opal.E_paper_bonds", "youngs_modulus_gpa"), ("opal.strength_paper_bonds", "strength_mpa")):
+            m, s, n, particles, largest = at_largest(column)
+            out[key] = _ours(m, s, n, particles, f"FCC opal at D/d = {largest:g} (the largest with this quantity; paper: "
+                                                 "51), paper's bonds, static solver; three FBA packings; the trend over "
+                                                 "D/d is the size_study row")
+    extrapolation = read_table(os.path.join(data, "opal_resolution_extrapolation.csv"))
+    counts = sorted(int(r["particles"]) for r in resolution)
+    span = f"{counts[0]}-{counts[-1]}" if counts else ""
+    for key, quantity in (("opal.size_study_E_dd51", "youngs_modulus_gpa"),
+                          ("opal.size_study_strength_dd51", "strength_mpa"), ("opal.coordination", "bonds_per_particle")):
+        rows = [r for r in extrapolation if r["quantity"] == quantity and r["law"] == "estimate"]
+        if rows:
+            r = rows[0]
+            out[key] = _ours(float(r["at_target"]), float(r["standard_error"]), int(r["samples"]), span,
+                             f"q = q_inf + c d/D fitted to {r['samples']} samples at D/d = 9.2-{float(r['largest_d_over_d']):g}"
+                             " and taken at D/d = 51; SD = fit error and the spread of the laws 1/x^2 and 1/sqrt(x) "
+                             "(examples/opal/resolution_extrapolation.py)" +
+                             ("; bonds within 1.75 d per particle (the paper's 843,000 bonds / 80,000 particles per "
+                              "um^3 = 10.5; bonded neighbours are twice that)" if quantity == "bonds_per_particle" else ""))
+    runs = {r["run"]: r for r in read_table(os.path.join(data, "opal_runs.csv"))}
+    if "bulk" in runs:
+        bulk = runs["bulk"]
+        note = (f"pore-free FBA sample, porosity 0.38, {bulk['particles']} particles, periodic sides, E_b 6.53 GPa "
+                "(examples/opal/run.sh)")
+        out["opal.K_E"] = _ours(float(bulk["youngs_modulus"]) / float(bulk["bond_youngs_modulus"]), 0.0, 1,
+                                bulk["particles"], note)
+        compressive = runs.get("bulk_compressive")
+        out["opal.bulk_strength"] = _ours(
+            float(bulk["strength"]) * 1e-6, 0.0, 1, bulk["particles"],
+            note + "; eq. 16 on stretched bonds only (MUSEN)" +
+            (f"; {float(compressive['strength']) * 1e-6:.0f} MPa with eq. 16 on compressed bonds too" if compressive else ""))
+    if "coated" in runs:
+        coated = runs["coated"]
+        note = (f"FCC opal at D/d = 9.2 with 3.6 nm of titania (20 nm x 138/762), density "
+                f"{float(coated['density']):.0f} kg/m^3 (paper 668), paper's bonds, one sample (examples/opal/run.sh)")
+        out["opal.coating20_E"] = _ours(float(coated["youngs_modulus"]) * 1e-9, 0.0, 1, coated["particles"], note)
+        out["opal.coating20_strength"] = _ours(float(coated["strength"]) * 1e-6, 0.0, 1, coated["particles"], note)
+    return out
+
+
 def collect(data):
     """The rows of the reproduction table (dicts with COLUMNS) from the tables in folder ``data``:
     every key of PAPER_ROWS, with packlab's value where a table has it."""
@@ -326,6 +402,7 @@ def collect(data):
     ours.update(vem_values(data))
     ours.update(doh_values(data))
     ours.update(opal_values(data))
+    ours.update(opal_structure_values(data))
     rows = []
     for key, (paper, quantity, source, value, scatter, paper_particles) in PAPER_ROWS.items():
         o = ours.get(key, {})

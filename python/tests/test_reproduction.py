@@ -2,6 +2,9 @@
 rendering into the page's markers (docs/reproduction.md)."""
 
 import csv
+import os
+import subprocess
+import sys
 
 import matplotlib
 import pytest
@@ -9,6 +12,8 @@ import pytest
 matplotlib.use("Agg")
 
 from packlab import reproduction
+
+ROOT = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..")
 
 
 def test_half_a_unit_of_the_last_printed_digit():
@@ -98,3 +103,38 @@ def test_collect_reads_the_opal_porosity_rows_per_seed(tmp_path):
     assert float(rows["opal.eq25_E0"]["packlab_value"]) == pytest.approx(20.0)
     assert float(rows["opal.eq26_a"]["packlab_value"]) == pytest.approx(500.0)
     assert rows["opal.eq26_b"]["within"] == "no"  # 3.9 against 3.85 +- 0.005
+
+
+def test_collect_reads_the_opal_structure_rows_and_the_resolution_extrapolation(tmp_path):
+    # E = 2 - 5 d/D exactly (GPa), the strength 40 - 100 d/D (MPa), 8 + 0.1 x bonds per particle
+    # ... at D/d = 10, 20, 40, two packings each: the 1/x law gives q at D/d = 51 exactly, its
+    # standard error is zero and the row's SD is half the spread of the other two laws.
+    lines = ["scale,seed,pore_to_particle_diameter,particles,bonds,porosity,youngs_modulus_gpa,strength_mpa"]
+    for x in (10.0, 20.0, 40.0):
+        for seed, particles in ((1, int(100 * x)), (2, int(100 * x) + 2)):
+            bonds = (10.0 - 20.0 / x) * particles
+            lines.append(f"1,{seed},{x},{particles},{bonds},0.75,{2 - 5 / x},{40 - 100 / x if x < 40 else ''}")
+    (tmp_path / "opal_resolution.csv").write_text("\n".join(lines) + "\n")
+    (tmp_path / "opal_runs.csv").write_text(
+        "run,particles,bonds,porosity,density,bond_youngs_modulus,bond_strength,strain_rate,youngs_modulus,strength\n"
+        "bulk,1000,9000,0,nan,6e9,9e7,1,2.1e10,6.0e8\n"
+        "bulk_compressive,1000,9000,0,nan,6e9,9e7,1,2.1e10,3.0e8\n"
+        "coated,500,4000,0.66,668,6e9,9e7,1,5.9e9,2.5e8\n")
+    script = os.path.join(ROOT, "examples", "opal", "resolution_extrapolation.py")
+    subprocess.run([sys.executable, script, str(tmp_path)], check=True, capture_output=True,
+                   env={**os.environ, "PYTHONPATH": os.path.join(ROOT, "python")})
+    rows = {r["key"]: r for r in reproduction.collect(str(tmp_path))}
+    e51 = rows["opal.size_study_E_dd51"]
+    assert float(e51["packlab_value"]) == pytest.approx(2 - 5 / 51, rel=1e-4)
+    assert float(e51["packlab_sd"]) > 0 and e51["realizations"] == 6 and e51["particles"] == "1000-4002"
+    assert float(rows["opal.size_study_strength_dd51"]["packlab_value"]) == pytest.approx(40 - 100 / 51, rel=1e-4)
+    assert rows["opal.size_study_strength_dd51"]["realizations"] == 4  # no strength at D/d = 40
+    assert float(rows["opal.coordination"]["packlab_value"]) == pytest.approx(10 - 20 / 51, rel=1e-4)
+    assert float(rows["opal.E_paper_bonds"]["packlab_value"]) == pytest.approx(2 - 5 / 40)  # at the largest D/d
+    assert float(rows["opal.strength_paper_bonds"]["packlab_value"]) == pytest.approx(35.0)  # largest with a strength
+    assert float(rows["opal.K_E"]["packlab_value"]) == pytest.approx(3.5)
+    assert float(rows["opal.bulk_strength"]["packlab_value"]) == pytest.approx(600.0)
+    assert rows["opal.bulk_strength"]["within"] == "no"  # 600 against 601 +- 0.5 (half its last digit)
+    assert "300 MPa with eq. 16 on compressed bonds too" in rows["opal.bulk_strength"]["note"]
+    assert float(rows["opal.coating20_E"]["packlab_value"]) == pytest.approx(5.9)
+    assert rows["opal.coating20_E"]["within"] == "no"  # 5.9 against 5.96 +- 0.005
