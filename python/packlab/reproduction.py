@@ -326,7 +326,9 @@ def opal_values(data):
         m, s = mean_sd(values)
         return m, s, len(values)
 
-    note = f"{what}; fitted per seed over its six porosities, mean and SD over the seeds"
+    fractions = sorted(float(r["pore_fraction"]) for r in levels)
+    note = (f"{what}; fitted per seed over its {len(fractions)} pore fractions {fractions[0]:g}-{fractions[-1]:g}"
+            f"{'' if len(fractions) == 6 else ' (the paper: six, 0.39-0.63)'}, mean and SD over the seeds")
     for key, args in (("opal.eq25_E0", ("youngs_modulus", "power", "0", "e0", 1e-9)),
                       ("opal.eq25_m", ("youngs_modulus", "power", "0", "exponent")),
                       ("opal.eq24_b", ("youngs_modulus", "exponential", "shared", "exponent")),
