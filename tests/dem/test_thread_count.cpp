@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "packlab/core/error.hpp"
 #include "packlab/core/random.hpp"
 #include "packlab/dem/engine.hpp"
 #include "packlab/generate/bonding.hpp"
@@ -40,7 +41,7 @@ struct Outcome {
 };
 
 Outcome run(const Packing& packing, EngineConfig config, int threads, long blocks, long steps_per_block,
-            bool with_walls = false) {
+            bool with_walls = false, long* switches = nullptr) {
   config.threads = threads;
   Engine engine(packing, config);
   if (with_walls) {
@@ -68,11 +69,13 @@ Outcome run(const Packing& packing, EngineConfig config, int threads, long block
   out.angular_velocity = end.angular_velocity;
   for (const BondBreak& b : engine.bond_breaks()) out.breaks.push_back(b.bond);
   out.time = engine.time();
+  if (switches) *switches = engine.thread_switches();
   return out;
 }
 
-void expect_same_at_every_thread_count(const Packing& packing, const EngineConfig& config, long blocks, long steps,
+void expect_same_at_every_thread_count(const Packing& packing, EngineConfig config, long blocks, long steps,
                                        bool with_walls = false) {
+  config.adapt_threads = false;  // each count for every step (adaptation: its own test below)
   const Outcome one = run(packing, config, 1, blocks, steps, with_walls);
   for (int threads : {2, 3, 5}) {
     const Outcome many = run(packing, config, threads, blocks, steps, with_walls);
@@ -130,4 +133,36 @@ TEST(ThreadCount, BreakingBondsBetweenMovingWallsAreTheSameBitForBit) {
   const Outcome one = run(p, config, 1, 5, 80, true);
   ASSERT_GT(one.breaks.size(), 0u) << "the case must break bonds to test their order";
   expect_same_at_every_thread_count(p, config, 5, 80, true);
+}
+
+// adapt_threads: an engine that probes one thread against three every 10 steps (and runs at
+// whichever was faster) switches its thread count many times and still gives the bits of a
+// single-thread run, bonds breaking and walls moving included.
+TEST(ThreadCount, SwitchingBetweenOneAndSeveralThreadsMidRunChangesNoBit) {
+  Packing p = dense_random(1000, 0.60, 9, false);
+  generate::BondingOptions bonding;
+  bonding.cutoff_ratio = 1.2;
+  generate::add_bonds(p, bonding);
+  EngineConfig config;
+  config.types = {Material{1000.0, 100.0, 0.3, 1000.0, 0.3}};
+  config.time_step_rule = TimeStepRule::stiffness_sum;
+  config.bond_materials =
+      BondMaterialList<ElasticBond>{{.youngs_modulus = 2e3, .normal_strength = 40.0, .shear_strength = 40.0}};
+  config.adapt_threads = false;
+  const Outcome one = run(p, config, 1, 5, 80, true);
+  ASSERT_GT(one.breaks.size(), 0u);
+  config.adapt_threads = true;
+  config.thread_probe_interval = 10;
+  long switches = 0;
+  const Outcome adaptive = run(p, config, 3, 5, 80, true, &switches);
+  // A probe lasts at least 0.02 s at each count: at least one in 400 steps on any machine
+  // (to the other count and back: two switches).
+  EXPECT_GE(switches, 2);
+  EXPECT_TRUE(adaptive == one) << "a mid-run switch of the thread count changed the result";
+}
+
+TEST(ThreadCount, ProbeIntervalBelowTenStepsIsRefused) {
+  EngineConfig config;
+  config.thread_probe_interval = 5;
+  EXPECT_THROW(Engine(dense_random(100, 0.5, 1), config), InputError);
 }

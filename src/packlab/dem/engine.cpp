@@ -205,6 +205,11 @@ Engine::Engine(const Packing& packing, const EngineConfig& config) : packing_(pa
           static_cast<int>(b);
   }
   threads_ = config_.threads > 0 ? config_.threads : omp_get_max_threads();
+  require(config_.thread_probe_interval >= 10, "thread_probe_interval",
+          static_cast<double>(config_.thread_probe_interval), ">= 10 steps");
+  tuning_.configured = tuning_.best = threads_;
+  // The first probe after a few hundred steps: the first ones touch memory for the first time.
+  tuning_.steps_to_probe = std::min(300L, config_.thread_probe_interval);
   // Everything per particle and per bond now lives in particles_, density_ and bonds_:
   // packing() rebuilds the input's arrays from them.
   input_has_density_ = !packing_.density.empty();

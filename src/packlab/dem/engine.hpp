@@ -14,6 +14,7 @@
 #pragma once
 
 #include <array>
+#include <chrono>
 #include <cstddef>
 #include <istream>
 #include <ostream>
@@ -71,6 +72,13 @@ struct EngineConfig {
   //   config.bond_materials = BondMaterialList<ElasticBond>{{.youngs_modulus = 6.5e9}};
   BondMaterials bond_materials;
   int threads = 0;  // 0 = OpenMP default
+  // With more than one thread: every `thread_probe_interval` steps, time a short stretch of
+  // steps at one thread and at `threads` and run at the faster until the next probe. On a
+  // machine whose cores other jobs use, threads waiting for each other at the step's barriers
+  // can make two threads slower than one (docs/engine.md, "Parallelism"). The results do not
+  // depend on the thread count, so a switch changes no bit of them.
+  bool adapt_threads = true;
+  long thread_probe_interval = 4000;  // [steps], >= 10
 };
 
 // The bond law that `materials` holds parameters for ("contact", "elastic").
@@ -204,7 +212,9 @@ class Engine {
   void load_state(std::istream& in);
   long step_count() const { return step_; }
   double time() const { return time_; }
-  int threads() const { return threads_; }
+  int threads() const { return tuning_.configured; }  // as configured (0 resolved)
+  int active_threads() const { return threads_; }     // this step's (adapt_threads)
+  long thread_switches() const { return tuning_.switches; }
   long neighbor_builds() const { return neighbors_.builds(); }
   std::size_t listed_pairs() const { return neighbors_.pair_count(); }
   EngineMemory memory() const;
@@ -294,6 +304,10 @@ class Engine {
   template <bool Measure>
   void integrate(Totals& totals);
   void refresh_neighbors();
+  // adapt_threads: probes and switches between one thread and the configured count before a
+  // step (dem/step.cpp).
+  void tune_threads();
+  void set_active_threads(int threads);
   void mark_bonded_pairs();
   // Splits particles, pairs and bonds among the threads (after every neighbour rebuild).
   void partition_work();
@@ -350,7 +364,17 @@ class Engine {
   std::vector<double> measure_energy_, measure_force_;
   std::vector<double> chunk_sums_;      // per fixed-size chunk of particles
   std::vector<Vec3> wall_chunk_force_;  // [chunk * walls + wall]
-  int threads_ = 1;
+  int threads_ = 1;                     // this step's thread count
+  struct ThreadTuning {
+    int configured = 1;  // config.threads (0 resolved to the OpenMP default)
+    int best = 1;        // the faster of 1 and configured at the last probe
+    int phase = 0;       // 0: running at best; 1: timing the other count; 2: timing best
+    long steps_to_probe = 0;
+    long phase_steps = 0;
+    std::chrono::steady_clock::time_point phase_start{};
+    double other_seconds_per_step = 0.0;
+    long switches = 0;
+  } tuning_;
   double dt_ = 0.0;
   double time_step_cap_ = 0.0;  // contacts rule: max_time_step or the heaviest particle's step
   long step_ = 0;

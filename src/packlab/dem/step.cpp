@@ -24,6 +24,7 @@
 
 #include <algorithm>
 #include <array>
+#include <chrono>
 #include <climits>
 #include <cmath>
 #include <limits>
@@ -55,7 +56,9 @@ void Engine::partition_work() {
   // Ranges holding about equal work: a listed pair counts 1, a bond 2 (its law does more).
   auto work_before = [&](int i) { return static_cast<long>(first[i]) + 2L * bond_first_[i]; };
   const long total = work_before(n);
-  work_.resize(static_cast<std::size_t>(T));
+  // Never shrunk: switching between one thread and more (adapt_threads) keeps every thread's
+  // lists and their capacity; only the first T are used.
+  if (work_.size() < static_cast<std::size_t>(T)) work_.resize(static_cast<std::size_t>(T));
   int i = 0;
   for (int t = 0; t < T; ++t) {
     ThreadWork& w = work_[static_cast<std::size_t>(t)];
@@ -490,7 +493,8 @@ void Engine::pair_forces(ContactModel<Law>& model, Totals& totals) {
 
   // Order-independent reductions (max, counts) over threads; sums in particle order.
   std::size_t first_break = breaks_.size();
-  for (const ThreadWork& work : work_) {
+  for (int t = 0; t < T; ++t) {
+    const ThreadWork& work = work_[static_cast<std::size_t>(t)];
     totals.max_stiffness_over_mass = std::max(totals.max_stiffness_over_mass, work.totals.max_stiffness_over_mass);
     totals.bond_breaks += work.totals.bond_breaks;
     // Where each failed: the middle of the bond, from the positions of this step's force
@@ -617,8 +621,55 @@ void Engine::integrate(Totals& totals) {
   }
 }
 
+void Engine::set_active_threads(int threads) {
+  if (threads == threads_) return;
+  threads_ = threads;
+  ++tuning_.switches;
+  partition_work();
+}
+
+// adapt_threads: runs at the faster of one thread and the configured count, timed every
+// thread_probe_interval steps by a stretch at the other count followed by one at the current
+// best (close in time, so both see the same load). A stretch lasts at least probe_steps steps
+// and probe_seconds, so that timer resolution and a single neighbour rebuild do not decide.
+void Engine::tune_threads() {
+  ThreadTuning& t = tuning_;
+  if (t.configured == 1 || !config_.adapt_threads) return;
+  const long probe_steps = std::min(30L, config_.thread_probe_interval / 10);
+  constexpr double probe_seconds = 0.02;
+  const auto now = std::chrono::steady_clock::now();
+  if (t.phase == 0) {
+    if (--t.steps_to_probe > 0) return;
+    t.phase = 1;
+    t.phase_steps = 0;
+    t.phase_start = now;
+    set_active_threads(t.best == 1 ? t.configured : 1);
+  } else {
+    const double elapsed = std::chrono::duration<double>(now - t.phase_start).count();
+    if (t.phase_steps >= probe_steps && elapsed >= probe_seconds) {
+      const double per_step = elapsed / static_cast<double>(t.phase_steps);
+      if (t.phase == 1) {
+        t.other_seconds_per_step = per_step;
+        t.phase = 2;
+        t.phase_steps = 0;
+        t.phase_start = now;
+        set_active_threads(t.best);
+      } else {
+        // A 3 % margin: a count that is about as fast does not take over on noise.
+        if (t.other_seconds_per_step < 0.97 * per_step) t.best = t.best == 1 ? t.configured : 1;
+        set_active_threads(t.best);
+        t.phase = 0;
+        t.steps_to_probe = config_.thread_probe_interval;
+        return;
+      }
+    }
+  }
+  ++t.phase_steps;
+}
+
 template <bool Measure>
 Engine::Totals Engine::step_impl() {
+  tune_threads();
   if (neighbors_.needs_rebuild(particles_.position, particles_.radius)) refresh_neighbors();
   Totals totals;
   std::visit(
