@@ -32,6 +32,24 @@ else
   echo "(peer scripts not found at $PEERS: LAMMPS ratio skipped)"
 fi
 
+# Issue #14: two threads on a loaded machine (another process busy on one core) must never be
+# slower than one. A busy loop holds one core while the relax case runs 3,000 steps at 1
+# thread, at 2 threads fixed, and at 2 threads adapting its count (the default).
+echo; echo "== relax on a loaded machine (a busy loop on one core) =="
+( while :; do :; done ) &
+busy=$!
+declare -A loaded
+for mode in "1" "2 fixed" "2"; do
+  t=${mode%% *}
+  extra=""; [ "$mode" = "2 fixed" ] && extra=fixed
+  out=$("$BUILD/bench_relax" "$t" 3000 $extra)
+  echo "$out" | head -1
+  loaded[$mode]=$(echo "$out" | rate)
+done
+kill "$busy" 2>/dev/null; wait "$busy" 2>/dev/null
+awk -v one="${loaded[1]}" -v fixed="${loaded[2 fixed]}" -v adapt="${loaded[2]}" \
+  'BEGIN { printf "loaded machine, particle-steps/s: 1 thread %.3g, 2 threads fixed %.3g (%.2fx), 2 threads adaptive %.3g (%.2fx; target >= 1)\n", one, fixed, fixed / one, adapt, adapt / one }'
+
 # The other capabilities' benchmarks, each printing its own rates. BENCH_QUICK=1 keeps the
 # long end-to-end cases short (rates only).
 quick=${BENCH_QUICK:-0}

@@ -135,7 +135,7 @@ TEST(ThreadCount, BreakingBondsBetweenMovingWallsAreTheSameBitForBit) {
   expect_same_at_every_thread_count(p, config, 5, 80, true);
 }
 
-// adapt_threads: an engine that probes one thread against three every 10 steps (and runs at
+// adapt_threads: an engine that probes one thread against three every millisecond (and runs at
 // whichever was faster) switches its thread count many times and still gives the bits of a
 // single-thread run, bonds breaking and walls moving included.
 TEST(ThreadCount, SwitchingBetweenOneAndSeveralThreadsMidRunChangesNoBit) {
@@ -152,17 +152,21 @@ TEST(ThreadCount, SwitchingBetweenOneAndSeveralThreadsMidRunChangesNoBit) {
   const Outcome one = run(p, config, 1, 5, 80, true);
   ASSERT_GT(one.breaks.size(), 0u);
   config.adapt_threads = true;
-  config.thread_probe_interval = 10;
+  config.thread_probe_every = 1e-3;
+  config.thread_probe_seconds = 1e-3;
   long switches = 0;
   const Outcome adaptive = run(p, config, 3, 5, 80, true, &switches);
-  // A probe lasts at least 0.02 s at each count: at least one in 400 steps on any machine
-  // (to the other count and back: two switches).
-  EXPECT_GE(switches, 2);
+  // A probe switches to the other count and back twice (4 switches) after step 300; its four
+  // stretches of 10 steps and 1 ms fit in the 100 steps left on any machine.
+  EXPECT_GE(switches, 4);
   EXPECT_TRUE(adaptive == one) << "a mid-run switch of the thread count changed the result";
 }
 
-TEST(ThreadCount, ProbeIntervalBelowTenStepsIsRefused) {
+TEST(ThreadCount, ProbeTimesThatAreNotPositiveAreRefused) {
   EngineConfig config;
-  config.thread_probe_interval = 5;
+  config.thread_probe_every = 0.0;
+  EXPECT_THROW(Engine(dense_random(100, 0.5, 1), config), InputError);
+  config.thread_probe_every = 20.0;
+  config.thread_probe_seconds = -1.0;
   EXPECT_THROW(Engine(dense_random(100, 0.5, 1), config), InputError);
 }

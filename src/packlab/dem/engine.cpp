@@ -205,11 +205,13 @@ Engine::Engine(const Packing& packing, const EngineConfig& config) : packing_(pa
           static_cast<int>(b);
   }
   threads_ = config_.threads > 0 ? config_.threads : omp_get_max_threads();
-  require(config_.thread_probe_interval >= 10, "thread_probe_interval",
-          static_cast<double>(config_.thread_probe_interval), ">= 10 steps");
+  require(config_.thread_probe_every > 0.0 && std::isfinite(config_.thread_probe_every), "thread_probe_every",
+          config_.thread_probe_every, "> 0 s");
+  require(config_.thread_probe_seconds > 0.0 && config_.thread_probe_seconds <= 60.0, "thread_probe_seconds",
+          config_.thread_probe_seconds, "in (0, 60] s");
   tuning_.configured = tuning_.best = threads_;
   // The first probe after a few hundred steps: the first ones touch memory for the first time.
-  tuning_.steps_to_probe = std::min(300L, config_.thread_probe_interval);
+  tuning_.steps_to_probe = 300;
   // Everything per particle and per bond now lives in particles_, density_ and bonds_:
   // packing() rebuilds the input's arrays from them.
   input_has_density_ = !packing_.density.empty();

@@ -72,13 +72,15 @@ struct EngineConfig {
   //   config.bond_materials = BondMaterialList<ElasticBond>{{.youngs_modulus = 6.5e9}};
   BondMaterials bond_materials;
   int threads = 0;  // 0 = OpenMP default
-  // With more than one thread: every `thread_probe_interval` steps, time a short stretch of
-  // steps at one thread and at `threads` and run at the faster until the next probe. On a
-  // machine whose cores other jobs use, threads waiting for each other at the step's barriers
-  // can make two threads slower than one (docs/engine.md, "Parallelism"). The results do not
-  // depend on the thread count, so a switch changes no bit of them.
+  // With more than one thread: now and then (every `thread_probe_every` seconds, the first
+  // time after 300 steps) time stretches of steps at one thread and at `threads`, alternating
+  // (other, current, other, current), and run at the faster until the next probe. On a machine
+  // whose cores other jobs use, threads waiting for each other at the step's barriers can make
+  // two threads slower than one (docs/engine.md, "Parallelism"). The results do not depend on
+  // the thread count, so a switch changes no bit of them.
   bool adapt_threads = true;
-  long thread_probe_interval = 4000;  // [steps], >= 10
+  double thread_probe_every = 20.0;   // [s] of running between probes, > 0
+  double thread_probe_seconds = 0.1;  // each timed stretch lasts at least this [s] and 10 steps, > 0
 };
 
 // The bond law that `materials` holds parameters for ("contact", "elastic").
@@ -368,11 +370,13 @@ class Engine {
   struct ThreadTuning {
     int configured = 1;  // config.threads (0 resolved to the OpenMP default)
     int best = 1;        // the faster of 1 and configured at the last probe
-    int phase = 0;       // 0: running at best; 1: timing the other count; 2: timing best
-    long steps_to_probe = 0;
+    // 0: running at best; 1 and 3: timing the other count; 2 and 4: timing best.
+    int phase = 0;
+    long steps_to_probe = 0;  // before the first probe
+    std::chrono::steady_clock::time_point next_probe{}, phase_start{};
     long phase_steps = 0;
-    std::chrono::steady_clock::time_point phase_start{};
-    double other_seconds_per_step = 0.0;
+    double other_seconds = 0.0, best_seconds = 0.0;  // summed over the probe's stretches
+    long other_steps = 0, best_steps = 0;
     long switches = 0;
   } tuning_;
   double dt_ = 0.0;

@@ -628,40 +628,47 @@ void Engine::set_active_threads(int threads) {
   partition_work();
 }
 
-// adapt_threads: runs at the faster of one thread and the configured count, timed every
-// thread_probe_interval steps by a stretch at the other count followed by one at the current
-// best (close in time, so both see the same load). A stretch lasts at least probe_steps steps
-// and probe_seconds, so that timer resolution and a single neighbour rebuild do not decide.
+// adapt_threads: runs at the faster of one thread and the configured count. A probe times four
+// stretches, alternating the other count and the current best (other, best, other, best), so
+// that a load that changes during the probe weighs on both alike; each stretch lasts at least
+// 10 steps and thread_probe_seconds (0.1 s: many scheduler time slices, so that a busy
+// machine's noise, timer resolution and a single neighbour rebuild do not decide).
 void Engine::tune_threads() {
   ThreadTuning& t = tuning_;
   if (t.configured == 1 || !config_.adapt_threads) return;
-  const long probe_steps = std::min(30L, config_.thread_probe_interval / 10);
-  constexpr double probe_seconds = 0.02;
-  const auto now = std::chrono::steady_clock::now();
+  using Clock = std::chrono::steady_clock;
+  const auto now = Clock::now();
+  const int other = t.best == 1 ? t.configured : 1;
   if (t.phase == 0) {
-    if (--t.steps_to_probe > 0) return;
+    if (t.steps_to_probe > 0 ? --t.steps_to_probe > 0 : now < t.next_probe) return;
+    t.steps_to_probe = 0;
+    t.other_seconds = t.best_seconds = 0.0;
+    t.other_steps = t.best_steps = 0;
     t.phase = 1;
     t.phase_steps = 0;
     t.phase_start = now;
-    set_active_threads(t.best == 1 ? t.configured : 1);
+    set_active_threads(other);
   } else {
     const double elapsed = std::chrono::duration<double>(now - t.phase_start).count();
-    if (t.phase_steps >= probe_steps && elapsed >= probe_seconds) {
-      const double per_step = elapsed / static_cast<double>(t.phase_steps);
-      if (t.phase == 1) {
-        t.other_seconds_per_step = per_step;
-        t.phase = 2;
-        t.phase_steps = 0;
-        t.phase_start = now;
-        set_active_threads(t.best);
-      } else {
+    if (t.phase_steps >= 10 && elapsed >= config_.thread_probe_seconds) {
+      const bool timing_other = t.phase % 2 == 1;
+      (timing_other ? t.other_seconds : t.best_seconds) += elapsed;
+      (timing_other ? t.other_steps : t.best_steps) += t.phase_steps;
+      if (t.phase == 4) {
         // A 3 % margin: a count that is about as fast does not take over on noise.
-        if (t.other_seconds_per_step < 0.97 * per_step) t.best = t.best == 1 ? t.configured : 1;
+        const double other_per_step = t.other_seconds / static_cast<double>(t.other_steps);
+        const double best_per_step = t.best_seconds / static_cast<double>(t.best_steps);
+        if (other_per_step < 0.97 * best_per_step) t.best = other;
         set_active_threads(t.best);
         t.phase = 0;
-        t.steps_to_probe = config_.thread_probe_interval;
+        t.next_probe = now + std::chrono::duration_cast<Clock::duration>(
+                                 std::chrono::duration<double>(config_.thread_probe_every));
         return;
       }
+      ++t.phase;
+      t.phase_steps = 0;
+      t.phase_start = now;
+      set_active_threads(t.phase % 2 == 1 ? other : t.best);
     }
   }
   ++t.phase_steps;
