@@ -3,7 +3,9 @@
 // std::bad_alloc after minutes, or in the kernel's out-of-memory killer.
 #pragma once
 
+#include <cstddef>
 #include <string_view>
+#include <vector>
 
 namespace packlab {
 
@@ -14,5 +16,12 @@ double physical_memory_bytes();
 // this machine" when items * bytes_per_item exceeds the physical memory (no check where that
 // is unknown).
 void require_memory(std::string_view key, double value, double items, double bytes_per_item);
+
+// Heap bytes a vector holds (its capacity, not its size): the unit of the memory reports of the
+// engine, the neighbour list and the Lubachevsky-Stillinger simulation.
+template <class T>
+std::size_t heap_bytes(const std::vector<T>& v) {
+  return v.capacity() * sizeof(T);
+}
 
 }  // namespace packlab

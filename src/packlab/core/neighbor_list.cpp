@@ -8,6 +8,7 @@
 
 #include "packlab/core/binary_io.hpp"
 #include "packlab/core/error.hpp"
+#include "packlab/core/memory.hpp"
 #include "packlab/core/parallel_errors.hpp"
 
 namespace packlab {
@@ -282,20 +283,14 @@ void NeighborList::build(const Box& box, std::vector<Vec3>& position, const std:
   ++builds_;
 }
 
-namespace {
-template <class T>
-std::size_t held(const std::vector<T>& v) {
-  return v.capacity() * sizeof(T);
-}
-}  // namespace
-
 NeighborList::Memory NeighborList::memory() const {
   Memory m;
-  m.per_particle_arrays = held(first_) + held(position_at_build_) + held(radius_at_build_) + held(cell_start_) +
-                          held(cell_particles_) + held(particle_cell_) + held(cell_position_) + held(cell_radius_);
-  m.per_pair_arrays = held(partner_) + held(image_) + held(previous_index_);
-  for (const auto& v : thread_partner_) m.per_pair_arrays += held(v);
-  for (const auto& v : thread_image_) m.per_pair_arrays += held(v);
+  m.per_particle_arrays = heap_bytes(first_) + heap_bytes(position_at_build_) + heap_bytes(radius_at_build_) +
+                          heap_bytes(cell_start_) + heap_bytes(cell_particles_) + heap_bytes(particle_cell_) +
+                          heap_bytes(cell_position_) + heap_bytes(cell_radius_);
+  m.per_pair_arrays = heap_bytes(partner_) + heap_bytes(image_) + heap_bytes(previous_index_);
+  for (const auto& v : thread_partner_) m.per_pair_arrays += heap_bytes(v);
+  for (const auto& v : thread_image_) m.per_pair_arrays += heap_bytes(v);
   return m;
 }
 

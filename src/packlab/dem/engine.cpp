@@ -13,6 +13,7 @@
 #include <tuple>
 
 #include "packlab/core/error.hpp"
+#include "packlab/core/memory.hpp"
 #include "packlab/core/spatial_sort.hpp"
 
 namespace packlab::dem {
@@ -298,32 +299,28 @@ std::size_t Engine::intact_bonds() const {
   return count;
 }
 
-namespace {
-template <class T>
-std::size_t held(const std::vector<T>& v) {
-  return v.capacity() * sizeof(T);
-}
-}  // namespace
-
 EngineMemory Engine::memory() const {
   EngineMemory m;
   const ParticleStore& P = particles_;
-  m.particles = held(P.position) + held(P.velocity) + held(P.angular_velocity) + held(P.force) + held(P.torque) +
-                held(P.radius) + held(P.mass) + held(P.inertia) + held(P.inverse_mass) + held(P.inverse_inertia) +
-                held(P.type) + held(P.fixed) + held(damping_) + held(original_index_) + held(density_) + held(wraps_) +
-                held(stiffness_sum_) + held(measure_energy_) + held(measure_force_) + held(chunk_sums_) +
-                held(bond_first_);
+  m.particles = heap_bytes(P.position) + heap_bytes(P.velocity) + heap_bytes(P.angular_velocity) + heap_bytes(P.force) +
+                heap_bytes(P.torque) + heap_bytes(P.radius) + heap_bytes(P.mass) + heap_bytes(P.inertia) +
+                heap_bytes(P.inverse_mass) + heap_bytes(P.inverse_inertia) + heap_bytes(P.type) + heap_bytes(P.fixed) +
+                heap_bytes(damping_) + heap_bytes(original_index_) + heap_bytes(density_) + heap_bytes(wraps_) +
+                heap_bytes(stiffness_sum_) + heap_bytes(measure_energy_) + heap_bytes(measure_force_) +
+                heap_bytes(chunk_sums_) + heap_bytes(bond_first_);
   const NeighborList::Memory list = neighbors_.memory();
   m.neighbor_list = list.per_particle_arrays;
-  m.listed_pairs = list.per_pair_arrays + held(pair_owner_) + held(pair_bonded_);
-  std::visit([&](const auto& model) { m.contact_history = held(model.history) + held(model.wall_history); }, model_);
-  m.bonds = held(bonds_.i) + held(bonds_.j) + held(bonds_.image) + held(bonds_.material) + held(bonds_.rest_length) +
-            held(bonds_.state) + held(bonds_.pair) + held(bond_order_) + held(breaks_);
-  std::visit([&](const auto& model) { m.bonds += held(model.history); }, bond_model_);
+  m.listed_pairs = list.per_pair_arrays + heap_bytes(pair_owner_) + heap_bytes(pair_bonded_);
+  std::visit([&](const auto& model) { m.contact_history = heap_bytes(model.history) + heap_bytes(model.wall_history); },
+             model_);
+  m.bonds = heap_bytes(bonds_.i) + heap_bytes(bonds_.j) + heap_bytes(bonds_.image) + heap_bytes(bonds_.material) +
+            heap_bytes(bonds_.rest_length) + heap_bytes(bonds_.state) + heap_bytes(bonds_.pair) +
+            heap_bytes(bond_order_) + heap_bytes(breaks_);
+  std::visit([&](const auto& model) { m.bonds += heap_bytes(model.history); }, bond_model_);
   for (const ThreadWork& w : work_) {
-    m.bonds += held(w.failed_bonds);
-    m.threads += held(w.crossing_pairs) + held(w.crossing_pair_results) + held(w.crossing_pair_acts) +
-                 held(w.crossing_bonds) + held(w.crossing_bond_results);
+    m.bonds += heap_bytes(w.failed_bonds);
+    m.threads += heap_bytes(w.crossing_pairs) + heap_bytes(w.crossing_pair_results) + heap_bytes(w.crossing_pair_acts) +
+                 heap_bytes(w.crossing_bonds) + heap_bytes(w.crossing_bond_results);
   }
   return m;
 }

@@ -213,19 +213,12 @@ LsSimulation LsSimulation::load_state(std::istream& in) {
   return sim;
 }
 
-namespace {
-template <class T>
-std::size_t bytes_of(const std::vector<T>& v) {
-  return v.capacity() * sizeof(T);
-}
-}  // namespace
-
 std::size_t LsSimulation::memory_bytes() const {
-  std::size_t b = bytes_of(class_rho_) + bytes_of(reach_) + bytes_of(body_) + bytes_of(id_) + bytes_of(ev_) +
-                  bytes_of(cell_) + bytes_of(next_) + bytes_of(center_) + bytes_of(bound_) + bytes_of(skin_) +
-                  bytes_of(bound_cap_) + bytes_of(list_cap_) + bytes_of(list_base_) + bytes_of(list_fill_) +
-                  list_.size() * sizeof(std::uint32_t) + bytes_of(hkey_) + bytes_of(hid_) + bytes_of(hpos_);
-  for (const Grid& g : grid_) b += bytes_of(g.head);
+  std::size_t b = heap_bytes(class_rho_) + heap_bytes(reach_) + heap_bytes(body_) + heap_bytes(id_) + heap_bytes(ev_) +
+                  heap_bytes(cell_) + heap_bytes(next_) + heap_bytes(center_) + heap_bytes(bound_) + heap_bytes(skin_) +
+                  heap_bytes(bound_cap_) + heap_bytes(list_cap_) + heap_bytes(list_base_) + heap_bytes(list_fill_) +
+                  list_.size() * sizeof(std::uint32_t) + heap_bytes(hkey_) + heap_bytes(hid_) + heap_bytes(hpos_);
+  for (const Grid& g : grid_) b += heap_bytes(g.head);
   return b;
 }
 
