@@ -5,32 +5,34 @@
 #  2. bimodal, size ratio 0.313, small/large volume ratio 0.333, c = 0.6: partial RDFs g11, g12,
 #     g22 for N = 2000 (CRM and SCRM) and N = 7000 (SCRM, M = 3 global shakes);
 #  3. the shell count I(r) of a simple cubic lattice for four bin widths;
-#  4. fast compression of 10,000 monodisperse spheres to jamming at several growth rates.
-# The packings are four studies (docs/study.md): examples/study/scrm_paper.toml (1, 2 at
-# N = 2000), scrm_bi7000.toml, scrm_lattice.toml (3) and scrm_jamming.toml (4), run by
-# `packlab study` into OUT/paper, OUT/bi7000, OUT/lattice, OUT/jamming. The folders of the
-# summary (OUT/mono-ls-c0.6/r1, OUT/jam-G0.02, OUT/sc-dr0.01, ...) link to their runs; the
-# averaged RDFs (one `packlab analyze rdf` over the realizations of a case) and summarize.py
-# follow.
-# usage: examples/scrm/run_paper.sh [OUT=scrm-paper] [P=8] [JOBS=2]
+#  4. fast compression of 10,000 monodisperse spheres to jamming at several growth rates;
+#  5. the move rule of the shakes, what moves the drop at c = 0.575, and the number of final
+#     shakes M of the bimodal packs (Figs. 12-13).
+# The packings are seven studies (docs/study.md): examples/study/scrm_paper.toml (1, 2 at
+# N = 2000), scrm_bi7000.toml, scrm_lattice.toml (3), scrm_jamming.toml (4), scrm_rules.toml,
+# scrm_diagnosis.toml and scrm_mstudy.toml (5), run by `packlab study` into OUT/paper,
+# OUT/bi7000, ... The folders of the summary (OUT/mono-ls-c0.6/r1, OUT/jam-G0.02,
+# OUT/sc-dr0.01, ...) link to their runs; the averaged RDFs (one `packlab analyze rdf` over the
+# realizations of a case) and summarize.py (tables, docs/data/scrm_*.csv, figures) follow.
+# usage: examples/scrm/run_paper.sh [OUT=scrm-paper] [P=80] [JOBS=2]
 # Needs `packlab` on PATH (or PACKLAB=path/to/packlab). Takes about an hour on two cores.
 set -euo pipefail
 OUT=${1:-scrm-paper}
-P=${2:-8}
+P=${2:-80}
 JOBS=${3:-2}
 PACKLAB=${PACKLAB:-packlab}
 HERE=$(cd "$(dirname "$0")" && pwd)
 SPECS="$HERE/../study"
 mkdir -p "$OUT"
 
-# P realizations per curve: the SPEC has seeds 1-8; another P gets a copy with seeds 1-P.
+# P realizations per curve: the SPEC has seeds 1-80; another P gets a copy with seeds 1-P.
 paper="$SPECS/scrm_paper.toml"
-if [ "$P" != 8 ]; then
+if [ "$P" != 80 ]; then
   paper="$OUT/scrm_paper_P$P.toml"
   sed "s/^seeds = .*/seeds = [$(seq -s, 1 "$P")]/" "$SPECS/scrm_paper.toml" > "$paper"
 fi
 "$PACKLAB" study "$paper" --out "$OUT/paper" --workers "$JOBS"
-for s in bi7000 lattice jamming; do
+for s in rules diagnosis mstudy bi7000 lattice jamming; do
   "$PACKLAB" study "$SPECS/scrm_$s.toml" --out "$OUT/$s" --workers "$JOBS"
 done
 
@@ -53,6 +55,18 @@ def link(target, name):
 for r in rows("paper"):
     case = f"{'bi' if r['sizes'] != 'false' else 'mono'}-{r['method']}-c{r['phi']}"
     link(f"paper/runs/generate-{r['task']}", f"{case}/r{r['seed']}")
+for r in rows("rules"):
+    rule = "freest" if r["move-rule"] == "freest" else f"metropolis{r['max-trials']}"
+    link(f"rules/runs/scrm-{r['task']}", f"mono-scrm-{rule}-c{r['phi']}/r{r['seed']}")
+for r in rows("diagnosis"):
+    case = f"{r['method']}-G{r['growth-rate']}"
+    if r["final-shakes"] not in ("false", "10"):
+        case += f"-M{r['final-shakes']}"
+    if r["blocks-per-cycle"] != "false":
+        case += f"-bpc{r['blocks-per-cycle']}"
+    link(f"diagnosis/runs/generate-{r['task']}", f"diag-{case}-c0.575/r{r['seed']}")
+for r in rows("mstudy"):
+    link(f"mstudy/runs/scrm-{r['task']}", f"bi-scrm-M{r['final-shakes']}-c0.6/r{r['seed']}")
 for r in rows("bi7000"):
     link(f"bi7000/runs/scrm-{r['task']}", f"bi7000-scrm-c0.6/r{r['seed']}")
 for r in rows("jamming"):

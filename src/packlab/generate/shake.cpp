@@ -20,6 +20,8 @@ void ShakeParams::validate() const {
   io::ConfigSchema declared("shake");
   io::add_shake_params(declared, copy);
   declared.validate();
+  if (move_rule != "metropolis" && move_rule != "freest")
+    fail_input("move_rule = " + move_rule + ": must be metropolis or freest");
   require(adapt_factor > 1.0 && adapt_factor <= 2.0, "adapt_factor", adapt_factor, "in (1, 2]");
   require(min_window > 0.0 && min_window <= window, "min_window", min_window, "in (0, window]");
   require(max_window >= window && max_window <= 1.0, "max_window", max_window, "in [window, 1]");
@@ -193,7 +195,70 @@ double Shaker::free_distance_gathered(int i, const Vec3& u, double limit) const 
   return best;
 }
 
+bool Shaker::overlaps_gathered(int i, const Vec3& x) const {
+  for (int a = 0; a < 3; ++a)
+    if (!p_.box.periodic[a] && (x[a] < p_.box.lo[a] || x[a] > p_.box.lo[a] + p_.box.length[a])) return true;
+  for (const auto& [j, off] : near_) {
+    const double sigma = p_.radius[i] + p_.radius[j];
+    if (norm2(p_.position[j] + off - x) < sigma * sigma) return true;
+  }
+  return false;
+}
+
+void Shaker::move_to(int i, const Vec3& x_new, double step) {
+  const Vec3 x = p_.box.wrap(x_new);
+  p_.position[i] = x;
+  const int c = cell_index(x);
+  if (c != cell_of_[i]) {
+    auto& old = cells_[cell_of_[i]];
+    const int moved = old.back();
+    old[slot_[i]] = moved;
+    slot_[moved] = slot_[i];
+    old.pop_back();
+    slot_[i] = static_cast<int>(cells_[c].size());
+    cells_[c].push_back(i);
+    cell_of_[i] = c;
+  }
+  ++stats_.moves;
+  step_sum_ += step;
+  stats_.mean_step = step_sum_ / static_cast<double>(stats_.moves);
+}
+
+// scrm-bimodal-packs §3.2: "the selected particle center x_i is randomly moved to a new position
+// x'_i uniformly distributed in the window w_s ... If the particle does not overlap with any other
+// inclusions the shaking is accepted, otherwise the trial shaking is repeated until the number of
+// attempted trial shakings exceed some limit N_sh."
+void Shaker::visit_metropolis(int i, Random& rng) {
+  ++stats_.visits;
+  const int k = klass_[i];
+  const double a = p_.radius[i];
+  double& window = stats_.window[k];
+  const double limit = window * a;
+  gather(i, a + limit);
+  const Vec3 xi = p_.position[i];
+  for (int trial = 0; trial < params_.max_trials; ++trial) {
+    ++stats_.trials;
+    // Uniform in the ball: direction uniform, radius with density ~ r^2.
+    const Vec3 u = rng.unit_vector();
+    const double r = limit * std::cbrt(rng.uniform());
+    const Vec3 x = xi + u * r;
+    if (overlaps_gathered(i, x)) continue;
+    // Adapting: a window whose first trial succeeds grows, one that needed more shrinks (an
+    // acceptance of about one half per trial).
+    if (params_.adaptive)
+      window = trial == 0 ? std::min(params_.max_window, window * params_.adapt_factor)
+                          : std::max(params_.min_window, window / params_.adapt_factor);
+    move_to(i, x, r / a);
+    return;
+  }
+  if (params_.adaptive) window = std::max(params_.min_window, window / params_.adapt_factor);
+}
+
 void Shaker::visit(int i, Random& rng) {
+  if (params_.move_rule == "metropolis") {
+    visit_metropolis(i, rng);
+    return;
+  }
   ++stats_.visits;
   const int k = klass_[i];
   const double a = p_.radius[i];
@@ -220,22 +285,7 @@ void Shaker::visit(int i, Random& rng) {
   const double amplitude_max = std::min(best, limit);
   if (amplitude_max <= 1e-12 * a) return;  // blocked in every trial direction
   const double amplitude = rng.uniform() * amplitude_max;
-  const Vec3 x = p_.box.wrap(p_.position[i] + best_u * amplitude);
-  p_.position[i] = x;
-  const int c = cell_index(x);
-  if (c != cell_of_[i]) {
-    auto& old = cells_[cell_of_[i]];
-    const int moved = old.back();
-    old[slot_[i]] = moved;
-    slot_[moved] = slot_[i];
-    old.pop_back();
-    slot_[i] = static_cast<int>(cells_[c].size());
-    cells_[c].push_back(i);
-    cell_of_[i] = c;
-  }
-  ++stats_.moves;
-  step_sum_ += amplitude / a;
-  stats_.mean_step = step_sum_ / static_cast<double>(stats_.moves);
+  move_to(i, p_.position[i] + best_u * amplitude, amplitude / a);
 }
 
 void Shaker::sweep(Random& rng) {

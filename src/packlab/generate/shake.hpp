@@ -2,22 +2,33 @@
 // and any number of size classes.
 //
 // A visit to particle i (radius a_i) gathers its testing window (the centres closer than
-// (1 + R_sh) a_i + a_j: a near-neighbour list, refreshed at every visit) and makes N_sh trials.
-// Trial l draws a uniformly random direction u_l and finds its collision-limited free distance
-// dt_l, the smallest root over the window of |x_i + u_l t - x_j| = a_i + a_j (eq. 9). The move
-// goes along the trial direction with the largest free distance, dt = max_l dt_l (the paper's
-// "Delta t = max_l Delta t^l with the corresponding direction u^l"), by an amplitude uniform on
-// [0, min(dt, R_sh a_i)]: every move is overlap-free, and it tends to move a sphere away from its
-// contacts towards the middle of its cage, which breaks "locked" local arrangements. Trials stop
-// early once a direction is free over the whole window. A sphere blocked in every trial
-// direction does not move. A global shake (sweep) visits every particle once, in a random order.
-// With `adaptive`, R_sh (per class) grows by `adapt_factor` when dt exceeded it and shrinks
+// (1 + R_sh) a_i + a_j: a near-neighbour list, refreshed at every visit) and makes up to N_sh
+// trials, by one of two move rules (`move_rule`):
+//
+// "metropolis" (the default; §3.2's first paragraph): trial l moves the centre to a point
+// uniformly distributed in the shake window |x' - x_i| < R_sh a_i and is accepted if the sphere
+// there overlaps no other; otherwise the next trial is drawn, up to N_sh. With N_sh = 1 this is
+// the textbook Metropolis move of hard spheres, whose stationary state is the equilibrium
+// ensemble at the packing's volume fraction (detailed balance: the trial is symmetric and every
+// overlap-free state has the same weight); with N_sh > 1 a sphere in a tight cage is more
+// likely to move than with one trial, a bias towards cages with more free volume.
+//
+// "freest" (§3.2's speed-up, as read here): trial l draws a uniformly random direction u_l and finds its
+// collision-limited free distance dt_l, the smallest root over the window of |x_i + u_l t - x_j| = a_i + a_j (eq. 9).
+// The move goes along the trial direction with the largest free distance, dt = max_l dt_l (the paper's "Delta t = max_l
+// Delta t^l with the corresponding direction u^l"), by an amplitude uniform on [0, min(dt, R_sh a_i)]: every move is
+// overlap-free, and it tends to move a sphere away from its contacts towards the middle of its cage, which breaks
+// "locked" local arrangements. Trials stop early once a direction is free over the whole window. A sphere blocked in
+// every trial direction does not move. This rule has no detailed balance: it empties the first ~0.005 a beyond contact
+// and piles pairs up at 2.01-2.03 a (docs/scrm.md, "Which move rule"). A global shake (sweep) visits every particle
+// once, in a random order. With `adaptive`, R_sh (per class) grows by `adapt_factor` when dt exceeded it and shrinks
 // otherwise, within [min_window, max_window]. Along open box axes centres stay inside the box.
 #pragma once
 
 #include <functional>
 #include <istream>
 #include <ostream>
+#include <string>
 #include <vector>
 
 #include "packlab/core/packing.hpp"
@@ -26,9 +37,10 @@
 namespace packlab::generate {
 
 struct ShakeParams {
-  double window = 0.02;      // R_sh: shake window radius in units of the particle's radius
-  int max_trials = 150;      // N_sh: trials per visit
-  bool adaptive = false;     // adapt R_sh per class
+  std::string move_rule = "metropolis";  // "metropolis" or "freest" (see above)
+  double window = 0.02;                  // R_sh: shake window radius in units of the particle's radius
+  int max_trials = 150;                  // N_sh: trials per visit
+  bool adaptive = false;                 // adapt R_sh per class
   double adapt_factor = 1.05;
   double min_window = 1e-4;
   double max_window = 0.5;
@@ -38,9 +50,9 @@ struct ShakeParams {
 struct ShakeStats {
   long sweeps = 0;
   long long visits = 0;
-  long long trials = 0;        // trial moves (directions tried)
-  long long moves = 0;         // executed moves (visits that moved)
-  double mean_step = 0.0;      // mean executed amplitude / a_i
+  long long trials = 0;    // trial moves (directions or displacements tried)
+  long long moves = 0;     // executed moves (visits that moved)
+  double mean_step = 0.0;  // mean executed amplitude / a_i
   double seconds = 0.0;
   std::vector<double> window;  // final R_sh per class (largest class first)
 };
@@ -71,6 +83,10 @@ class Shaker {
 
  private:
   void visit(int i, Random& rng);
+  void visit_metropolis(int i, Random& rng);
+  void move_to(int i, const Vec3& x, double step);
+  // Whether particle i centred at x would overlap a neighbour gathered by gather(i, ...).
+  bool overlaps_gathered(int i, const Vec3& x) const;
   void fill_cells();
   int cell_index(const Vec3& p) const;
   Packing& p_;

@@ -195,7 +195,11 @@ ConfigSchema vem_options(generate::VemParams& p) {
 }
 
 void add_shake_params(ConfigSchema& schema, generate::ShakeParams& p) {
-  schema.number("window", p.window, "Shake window R_sh in units of the particle radius")
+  schema
+      .text("move_rule", p.move_rule,
+            "Shake move: metropolis (a point uniform in the shake window, kept if free, up to max_trials tries) or "
+            "freest (along the freest of max_trials directions)")
+      .number("window", p.window, "Shake window R_sh in units of the particle radius")
       .range({0.0, 1.0, true, false})
       .integer("max_trials", p.max_trials, "Trials per visit N_sh")
       .range({1.0, 1e6, false, false})
