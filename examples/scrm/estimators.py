@@ -1,11 +1,13 @@
-"""The paper's estimators over the realizations of one case (scrm-bimodal-packs.txt §2, §4):
-g from the K-function with the toroidal edge correction (packlab.Rdf), the contact value by the
-right difference g+(2a) = [K(2a + dr) - K(2a)] / (4 pi (2a)^2 dr) (eq. 14_2) for several bin
-widths dr, the maximum of g near contact and the first gap of the averaged curve, and the
-window counts p(n_h) (R_h = 2.5).
+"""The paper's estimators over the realizations of one case (scrm-bimodal-packs.txt §2, §4).
 
-Per realization and averaged: the paper averages its curves over P realizations; packlab's SD of
-an averaged quantity is the standard error over the realizations (SD / sqrt(P)).
+g comes from the K-function with the toroidal edge correction (packlab.Rdf: every periodic image
+counts), the contact value from the right difference g+(sigma) = [K(sigma + dr) - K(sigma)] /
+(4 pi sigma^2 dr) (eq. 14_2), for several bin widths dr (the paper's is 0.01 a; its claim: any dr
+from 1e-4 a to 1e-2 a gives almost the same). The paper averages its curves over P realizations
+("smoothed by averaging over P = 80 realizations"); here the averaged curve is the mean of the
+realizations' g (same N and volume in each), and the uncertainty of anything read off it (a
+contact value, a peak or gap position) is its bootstrap standard error over the realizations:
+the SD of that quantity among curves averaged over P realizations drawn with replacement.
 
 usage (a table for some case folders, each holding r*/packing.xyz):
   PYTHONPATH=build/python:python /usr/bin/python3 examples/scrm/estimators.py CASE_DIR...
@@ -19,6 +21,8 @@ import sys
 import numpy as np
 
 BIN_WIDTHS = (0.001, 0.0025, 0.005, 0.01, 0.015)  # in units of a; the paper's is 0.01 a
+PAPER_DR = 0.01
+BOOTSTRAP = 200
 
 
 def realizations(case):
@@ -29,96 +33,119 @@ def realizations(case):
     return files
 
 
-def mean_se(values):
-    values = np.asarray(values, dtype=float)
-    if len(values) < 2:
-        return float(values.mean()), float("nan")
-    return float(values.mean()), float(values.std(ddof=1) / math.sqrt(len(values)))
+class Case:
+    """The realizations of one case, measured once: per pair of classes (k, m) (-1, -1 = all
+    particles) the contact value of each realization at each bin width and the g(r) of each
+    realization at the paper's dr; per realization the mean and variance of the window counts."""
 
-
-def window_moments(rdf, k=-1):
-    p = np.asarray(rdf.window_histogram(k), dtype=float)
-    n = np.arange(len(p))
-    mean = float((n * p).sum())
-    return mean, float(((n - mean) ** 2 * p).sum())
-
-
-def first_gap(r, g, lo, hi, smooth=5):
-    """Position of the minimum of g (running mean over `smooth` bins) with lo <= r <= hi."""
-    half = smooth // 2
-    best, where = math.inf, float("nan")
-    for q in range(half, len(r) - half):
-        if lo <= r[q] <= hi:
-            s = float(np.mean(g[q - half:q + half + 1]))
-            if s < best:
-                best, where = s, float(r[q])
-    return where
-
-
-def case_table(case, packlab, pairs=((-1, -1),), bin_widths=BIN_WIDTHS, r_max=6.0):
-    """Rows (dicts) of one case: per pair of classes (k, m) (-1, -1 = all particles) and bin width,
-    the contact value of the averaged curve and its standard error over realizations; at the
-    paper's dr = 0.01 a also the maximum of the averaged g within 2.1 a, its position, the first
-    gap and the window-count moments."""
-    files = realizations(case)
-    packings = [packlab.read(f) for f in files]
-    rows = []
-    for dr in bin_widths:
-        averaged = packlab.Rdf(dr=dr, r_max=r_max if dr == 0.01 else 2.2)
-        single = packlab.Rdf(dr=dr, r_max=2.2)
-        per = {pair: [] for pair in pairs}
-        windows = []
-        for p in packings:
-            averaged.accumulate(p)
-            single.compute(p)
+    def __init__(self, case, packlab, pairs=((-1, -1),), r_max=6.0, bin_widths=BIN_WIDTHS):
+        self.name = os.path.basename(os.path.normpath(case))
+        files = realizations(case)
+        self.realizations = len(files)
+        self.pairs = pairs
+        self.contact = {(pair, dr): [] for pair in pairs for dr in bin_widths}
+        self.curves = {pair: [] for pair in pairs}
+        self.window_mean, self.window_variance = [], []
+        fine = {dr: packlab.Rdf(dr=dr, r_max=2.2) for dr in bin_widths if dr != PAPER_DR}
+        paper = packlab.Rdf(dr=PAPER_DR, r_max=r_max)
+        for f in files:
+            p = packlab.read(f)
+            self.particles = len(p)
+            paper.compute(p)
             for pair in pairs:
-                per[pair].append(single.contact_value(*pair))
-            windows.append(window_moments(single))
-        for (k, m) in pairs:
-            value = averaged.contact_value(k, m)
-            _, se = mean_se(per[(k, m)])
-            row = {"case": os.path.basename(os.path.normpath(case)), "k": k, "m": m, "realizations": len(files),
-                   "particles": len(packings[0]), "dr": dr, "contact_value": value, "contact_value_se": se}
-            if dr == 0.01:
-                r = np.asarray(averaged.r)
-                g = np.asarray(averaged.g(k, m))
-                near = (r >= 1.99) & (r <= 2.1) if k < 0 or (k == m) else None
-                if near is not None and near.any():
-                    q = int(np.argmax(np.where(near, g, -np.inf)))
-                    row["max_near_contact"], row["max_near_contact_R"] = float(g[q]), float(r[q])
-                if k < 0:
-                    row["gap_R"] = first_gap(r, g, 2.3, 3.2)
-                    wm = [w[0] for w in windows]
-                    wv = [w[1] for w in windows]
-                    row["window_mean"], row["window_mean_se"] = mean_se(wm)
-                    row["window_variance"], row["window_variance_se"] = mean_se(wv)
-            rows.append(row)
-    return rows
+                self.contact[(pair, PAPER_DR)].append(paper.contact_value(*pair))
+                self.curves[pair].append(np.asarray(paper.g(*pair), dtype=float))
+            hist = np.asarray(paper.window_histogram(-1), dtype=float)
+            n = np.arange(len(hist))
+            mean = float((n * hist).sum())
+            self.window_mean.append(mean)
+            self.window_variance.append(float(((n - mean) ** 2 * hist).sum()))
+            for dr, rdf in fine.items():
+                rdf.compute(p)
+                for pair in pairs:
+                    self.contact[(pair, dr)].append(rdf.contact_value(*pair))
+        self.r = np.asarray(paper.r, dtype=float)
+        self.curves = {pair: np.vstack(c) for pair, c in self.curves.items()}
+        self._draws = np.random.default_rng(12345).integers(0, self.realizations,
+                                                            size=(BOOTSTRAP, self.realizations))
+
+    def curve(self, pair=(-1, -1)):
+        return self.curves[pair].mean(axis=0)
+
+    def _bootstrap(self, values, statistic):
+        """statistic of the mean over realizations and its bootstrap SE; values: per realization."""
+        values = np.asarray(values)
+        value = statistic(values.mean(axis=0))
+        if self.realizations < 2:
+            return value, float("nan")
+        draws = [statistic(values[d].mean(axis=0)) for d in self._draws]
+        draws = [d for d in draws if not math.isnan(d)]
+        return value, (float(np.std(draws, ddof=1)) if len(draws) > 1 else float("nan"))
+
+    def contact_value(self, pair=(-1, -1), dr=PAPER_DR):
+        return self._bootstrap(self.contact[(pair, dr)], float)
+
+    def ratio(self, other, pair=(-1, -1), dr=PAPER_DR, paired=False):
+        """g+(this) / g+(other) with its SE: independent realizations add their relative errors in
+        quadrature; paired ones (the same seeds, grown alike and differing only in the final
+        shakes) are resampled together."""
+        a, b = np.asarray(self.contact[(pair, dr)]), np.asarray(other.contact[(pair, dr)])
+        value = a.mean() / b.mean()
+        if paired:
+            draws = [a[d].mean() / b[d].mean() for d in self._draws]
+            return float(value), float(np.std(draws, ddof=1))
+        sa = a.std(ddof=1) / math.sqrt(len(a)) / a.mean()
+        sb = b.std(ddof=1) / math.sqrt(len(b)) / b.mean()
+        return float(value), float(value * math.hypot(sa, sb))
+
+    def extremum(self, pair, lo, hi, kind="min", smooth=5):
+        """Position (R = r/a) of the minimum or maximum of the averaged g, smoothed by a running
+        mean over `smooth` bins, in [lo, hi], with its bootstrap SE; NaN when the extremum found
+        is at an end of the interval (no minimum or maximum inside: not resolved)."""
+        half = smooth // 2
+        inside = np.nonzero((self.r >= lo) & (self.r <= hi))[0]
+
+        def where(g):
+            s = np.convolve(g, np.ones(smooth) / smooth, mode="same")[inside]
+            best = s.min() if kind == "min" else s.max()
+            # A plateau of equal values (a lattice's single shell spread by the running mean): its middle.
+            tied = np.nonzero(np.abs(s - best) <= 1e-12 * max(1.0, abs(best)))[0]
+            q = inside[tied[len(tied) // 2]]
+            if q - inside[0] < half or inside[-1] - q < half:
+                return float("nan")
+            return float(self.r[q])
+
+        return self._bootstrap(self.curves[pair], where)
+
+    def near_contact_max(self, pair=(-1, -1), hi=2.1):
+        g = self.curve(pair)
+        near = np.nonzero((self.r >= 1.99) & (self.r <= hi))[0]
+        q = near[np.argmax(g[near])]
+        return float(g[q]), float(self.r[q])
+
+    def window_variance_se(self):
+        v = np.asarray(self.window_variance)
+        return float(v.mean()), float(v.std(ddof=1) / math.sqrt(len(v)))
+
+    def window_mean_se(self):
+        v = np.asarray(self.window_mean)
+        return float(v.mean()), float(v.std(ddof=1) / math.sqrt(len(v)))
 
 
-COLUMNS = ["case", "k", "m", "realizations", "particles", "dr", "contact_value", "contact_value_se",
-           "max_near_contact", "max_near_contact_R", "gap_R", "window_mean", "window_mean_se", "window_variance",
-           "window_variance_se"]
-
-
-def format_rows(rows):
-    lines = [",".join(COLUMNS)]
-    for row in rows:
-        cells = []
-        for c in COLUMNS:
-            v = row.get(c, "")
-            cells.append(f"{v:.6g}" if isinstance(v, float) and not math.isnan(v) else ("" if isinstance(v, float)
-                                                                                        else str(v)))
-        lines.append(",".join(cells))
-    return "\n".join(lines) + "\n"
+def fmt(v):
+    if isinstance(v, float):
+        return "" if math.isnan(v) else f"{v:.6g}"
+    return str(v)
 
 
 def main(argv):
     import packlab
-    rows = []
-    for case in argv:
-        rows += case_table(case, packlab)
-    sys.stdout.write(format_rows(rows))
+    print("case,realizations,particles,dr,contact_value,contact_value_se")
+    for path in argv:
+        c = Case(path, packlab)
+        for dr in BIN_WIDTHS:
+            v, se = c.contact_value(dr=dr)
+            print(",".join(fmt(x) for x in (c.name, c.realizations, c.particles, dr, v, se)))
 
 
 if __name__ == "__main__":

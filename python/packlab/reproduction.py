@@ -33,6 +33,9 @@ DOH_TABLE2_VEM = {1000: (0.594, 4.68, 1.73, 0.383), 2000: (0.521, 4.71, 1.83, 0.
                   8000: (0.418, 4.69, 1.32, 0.237), 13000: (0.399, 4.69, 1.32, 0.267), 16000: (0.392, 4.61, 1.17, 0.231)}
 
 VEM, DOH, OPAL = "vem-void-expansion-method", "doh-elastic-properties", "bpm-inverse-opals"
+SCRM = "scrm-bimodal-packs"
+# scrm-bimodal-packs §4.2, Fig. 9: the peaks of g11 of the bimodal pack (size ratio 0.313).
+SCRM_G11_PEAKS = ("2.64", "3.464", "4.0", "4.54")
 
 
 def _paper_rows():
@@ -92,6 +95,36 @@ def _paper_rows():
                                 "", "2.5e6")
     rows["opal.coating20_strength"] = (OPAL, "strength of the opal with 20 nm titania [MPa]", "§4, Fig. 15", "249",
                                        "", "2.5e6")
+    # scrm-bimodal-packs §4 (N = 2000, P = 50-80 realizations, dr = 0.01 a, M = 10 global shakes).
+    for c, key, drop in (("0.575", "c0575", "43"), ("0.6", "c060", "21"), ("0.63", "c063", "4")):
+        rows[f"scrm.g2a_drop_{key}"] = (SCRM, f"drop of g(2a+) under shaking at c = {c} [%]", "§4.1, Figs. 1-2", drop,
+                                        "", "2000")
+    rows["scrm.gmax_change_c060"] = (SCRM, "max of g near contact, SCRM / LS, c = 0.6 (\"the CRM's peaks are always "
+                                     "greater\")", "§4.1", "< 1", "", "2000")
+    rows["scrm.dr_015_to_010"] = (SCRM, "change of g(2a+) from dr = 0.015 a to 0.01 a, SCRM c = 0.575 [%]", "§4.1",
+                                  "3", "", "2000")
+    for c, key in (("0.575", "c0575"), ("0.6", "c060"), ("0.63", "c063")):
+        rows[f"scrm.mono_gap_{key}"] = (SCRM, f"first gap of g, SCRM c = {c} [R = r/a] (\"2.75a-2.85a\")",
+                                        "§4.1, Figs. 1-2", "2.8", "0.05", "2000")
+    rows["scrm.window_variance_ls"] = (SCRM, "variance of the window counts n_h (R_h = 2.5), LS, c = 0.6",
+                                       "§4.1, Fig. 4", "", "", "2000")
+    rows["scrm.window_variance_scrm"] = (SCRM, "window-count variance SCRM / LS, c = 0.6 (shaking trims the extreme "
+                                         "counts)", "§4.1, Fig. 4", "< 1", "", "2000")
+    rows["scrm.bimodal_g11_drop"] = (SCRM, "drop of g11(2+) under shaking, bimodal c = 0.6 [%]", "§4.2, Fig. 8", "25",
+                                     "", "2000")
+    for peak in SCRM_G11_PEAKS:
+        rows[f"scrm.bimodal_r11_peak_{peak}"] = (SCRM, f"peak of g11 near R11 = {peak}, SCRM", "§4.2, Fig. 9", peak,
+                                                 "", "2000")
+    rows["scrm.bimodal_gap_g11"] = (SCRM, "first gap of g11 [R11] (2 + lambda)", "§4.2, Fig. 9", "2.3", "", "2000")
+    rows["scrm.bimodal_gap_g12"] = (SCRM, "first gap of g12 [R12] (1/lambda, \"observed as 3.3\")", "§4.2, Fig. 10",
+                                    "3.3", "", "2000")
+    rows["scrm.bimodal_gap_g22"] = (SCRM, "first gap of g22 [R22] (1/lambda, \"observed as 3.3\")", "§4.2, Fig. 11",
+                                    "3.3", "", "2000")
+    rows["scrm.m_study_g11_m3_vs_m60"] = (SCRM, "g11(2+) of M = 3 against M = 60 global shakes [%]", "§4.2, Figs. 12-13",
+                                          "12", "", "2000")
+    rows["scrm.m_study_g11_m30_vs_m60"] = (SCRM, "g11(2+) of M = 30 against M = 60 [%]", "§4.2", "< 0.2", "", "2000")
+    rows["scrm.m_study_n7000"] = (SCRM, "g11(2+) of N = 7000, M = 3 against N = 2000, M = 60 [%] (\"close\")",
+                                  "§4.2, Figs. 12-13", "", "", "7000")
     return rows
 
 
@@ -107,7 +140,7 @@ def half_last_digit(printed):
 
 def within(paper_value, paper_scatter, value, sd):
     """The rule of the module docstring: "yes", "no" or "n/a"."""
-    if value is None or (isinstance(value, float) and math.isnan(value)):
+    if value is None or (isinstance(value, float) and math.isnan(value)) or not paper_value:
         return "n/a"
     if paper_value.startswith("<"):
         return "yes" if abs(value) < float(paper_value[1:]) else "no"
@@ -397,6 +430,96 @@ def opal_structure_values(data):
     return out
 
 
+def _ratio(a, sa, b, sb):
+    """a / b with the SD of independent estimates."""
+    r = a / b
+    return r, r * math.hypot(sa / a, sb / b)
+
+
+def scrm_values(data):
+    """The SCRM paper's rows from examples/scrm/summarize.py's tables (scrm_mono.csv,
+    scrm_contact_values.csv, scrm_bimodal.csv): SDs are standard errors over the realizations
+    (bootstrap for positions), the uncertainty of the paper's own averaged curves."""
+    out = {}
+    mono = {r["case"]: r for r in read_table(os.path.join(data, "scrm_mono.csv"))}
+    f = lambda row, column: float(row[column]) if row.get(column) not in (None, "") else math.nan
+    rule = "the paper's rule (a point uniform in the 0.02a window, kept if free, up to N_sh = 150 tries)"
+    for c, key in (("0.575", "c0575"), ("0.6", "c060"), ("0.63", "c063")):
+        ls, sc = mono.get(f"mono-ls-c{c}"), mono.get(f"mono-scrm-c{c}")
+        if not (ls and sc):
+            continue
+        r, sd = _ratio(f(sc, "contact_value"), f(sc, "contact_value_se"), f(ls, "contact_value"),
+                       f(ls, "contact_value_se"))
+        note = (f"g(2a+) {f(ls, 'contact_value'):.2f} (LS, G = 0.02) -> {f(sc, 'contact_value'):.2f} (SCRM, M = 10, "
+                f"{rule}); dr = 0.01 a, K-function with toroidal edge correction; SD = standard error over the P "
+                "realizations")
+        out[f"scrm.g2a_drop_{key}"] = _ours(100 * (1 - r), 100 * sd, sc["realizations"], sc["particles"], note)
+        out[f"scrm.mono_gap_{key}"] = _ours(f(sc, "gap_R"), f(sc, "gap_R_se"), sc["realizations"], sc["particles"],
+                                            "minimum of the averaged g (5-bin running mean) in R = 2.3-3.2; SD by "
+                                            "bootstrap over the realizations")
+        if c == "0.6":
+            out["scrm.gmax_change_c060"] = _ours(
+                f(sc, "max_near_contact") / f(ls, "max_near_contact"), 0.0, sc["realizations"], sc["particles"],
+                f"max of the averaged g within R <= 2.1: LS {f(ls, 'max_near_contact'):.2f} at "
+                f"{f(ls, 'max_near_contact_R'):.2f}, SCRM {f(sc, 'max_near_contact'):.2f} at "
+                f"{f(sc, 'max_near_contact_R'):.2f}")
+            out["scrm.window_variance_ls"] = _ours(f(ls, "window_variance"), f(ls, "window_variance_se"),
+                                                   ls["realizations"], ls["particles"],
+                                                   "the paper's Fig. 4 gives the histograms, no number; mean count "
+                                                   f"{f(ls, 'window_mean'):.2f}")
+            r, sd = _ratio(f(sc, "window_variance"), f(sc, "window_variance_se"), f(ls, "window_variance"),
+                           f(ls, "window_variance_se"))
+            out["scrm.window_variance_scrm"] = _ours(r, sd, sc["realizations"], sc["particles"],
+                                                     f"SCRM variance {f(sc, 'window_variance'):.3f} against LS "
+                                                     f"{f(ls, 'window_variance'):.3f}")
+    by_dr = {(r["case"], float(r["dr"])): r for r in read_table(os.path.join(data, "scrm_contact_values.csv"))}
+    coarse, paper_dr = by_dr.get(("mono-scrm-c0.575", 0.015)), by_dr.get(("mono-scrm-c0.575", 0.01))
+    if coarse and paper_dr:
+        r, sd = _ratio(f(paper_dr, "contact_value"), f(paper_dr, "contact_value_se"), f(coarse, "contact_value"),
+                       f(coarse, "contact_value_se"))
+        ls = [by_dr.get(("mono-ls-c0.575", dr)) for dr in (0.015, 0.01)]
+        note = (f"g(2a+) {f(coarse, 'contact_value'):.2f} at dr = 0.015 a, {f(paper_dr, 'contact_value'):.2f} at 0.01 a "
+                "(same realizations: the SD overstates the error); all bin widths in scrm_contact_values.csv")
+        if all(ls):
+            note += f"; LS: {100 * (f(ls[1], 'contact_value') / f(ls[0], 'contact_value') - 1):+.1f} %"
+        out["scrm.dr_015_to_010"] = _ours(100 * (r - 1), 100 * sd, paper_dr["realizations"], paper_dr["particles"], note)
+    bimodal = {(r["case"], r["pair"]): r for r in read_table(os.path.join(data, "scrm_bimodal.csv"))}
+    ls, sc = bimodal.get(("bi-ls-c0.6", "g11")), bimodal.get(("bi-scrm-M60-c0.6", "g11"))
+    if ls and sc:
+        r, sd = _ratio(f(sc, "contact_value"), f(sc, "contact_value_se"), f(ls, "contact_value"),
+                       f(ls, "contact_value_se"))
+        m10 = bimodal.get(("bi-scrm-c0.6", "g11"))
+        out["scrm.bimodal_g11_drop"] = _ours(
+            100 * (1 - r), 100 * sd, sc["realizations"], sc["particles"],
+            f"g11(2+) {f(ls, 'contact_value'):.2f} (LS) -> {f(sc, 'contact_value'):.2f} (SCRM, M = 60)" +
+            (f"; M = 10: {100 * (1 - f(m10, 'contact_value') / f(ls, 'contact_value')):.1f} %" if m10 else ""))
+        for peak in SCRM_G11_PEAKS:
+            out[f"scrm.bimodal_r11_peak_{peak}"] = _ours(
+                f(sc, f"peak_{peak}"), f(sc, f"peak_{peak}_se"), sc["realizations"], sc["particles"],
+                "maximum of the averaged g11 (5-bin running mean, SCRM M = 60) near the paper's peak; empty: no maximum "
+                "inside the interval (not resolved); SD by bootstrap")
+        for pair in ("g11", "g12", "g22"):
+            row = bimodal.get(("bi-scrm-M60-c0.6", pair))
+            out[f"scrm.bimodal_gap_{pair}"] = _ours(f(row, "gap_R"), f(row, "gap_R_se"), row["realizations"],
+                                                    row["particles"], "minimum of the averaged partial g (SCRM, M = "
+                                                    "60); SD by bootstrap")
+    for m in ("3", "30"):
+        row = bimodal.get((f"bi-scrm-M{m}-c0.6", "g11"))
+        if row and row.get("ratio_to_M60"):
+            out[f"scrm.m_study_g11_m{m}_vs_m60"] = _ours(
+                100 * (f(row, "ratio_to_M60") - 1), 100 * f(row, "ratio_to_M60_se"), row["realizations"],
+                row["particles"], f"g11(2+) {f(row, 'contact_value'):.2f} at M = {m}, "
+                f"{f(sc, 'contact_value'):.2f} at M = 60; the same seeds grow the same packings (paired)")
+    big = bimodal.get(("bi7000-scrm-c0.6", "g11"))
+    if big and sc:
+        r, sd = _ratio(f(big, "contact_value"), f(big, "contact_value_se"), f(sc, "contact_value"),
+                       f(sc, "contact_value_se"))
+        out["scrm.m_study_n7000"] = _ours(100 * (r - 1), 100 * sd, big["realizations"], big["particles"],
+                                          f"g11(2+) {f(big, 'contact_value'):.2f} (N = 7000, M = 3) against "
+                                          f"{f(sc, 'contact_value'):.2f} (N = 2000, M = 60); the paper: \"close\"")
+    return out
+
+
 def collect(data):
     """The rows of the reproduction table (dicts with COLUMNS) from the tables in folder ``data``:
     every key of PAPER_ROWS, with packlab's value where a table has it."""
@@ -405,10 +528,15 @@ def collect(data):
     ours.update(doh_values(data))
     ours.update(opal_values(data))
     ours.update(opal_structure_values(data))
+    ours.update(scrm_values(data))
     rows = []
     for key, (paper, quantity, source, value, scatter, paper_particles) in PAPER_ROWS.items():
         o = ours.get(key, {})
         v, sd = o.get("packlab_value"), o.get("packlab_sd")
+        if isinstance(v, float) and math.isnan(v):
+            v, sd = None, None  # measured but not resolved: the note says so
+        if isinstance(sd, float) and math.isnan(sd):
+            sd = None
         rows.append({"key": key, "paper": paper, "quantity": quantity, "source": source, "paper_value": value,
                      "paper_scatter": scatter, "packlab_value": "" if v is None else f"{v:.4g}",
                      "packlab_sd": "" if sd is None else f"{sd:.2g}", "realizations": o.get("realizations", ""),

@@ -138,3 +138,78 @@ def test_collect_reads_the_opal_structure_rows_and_the_resolution_extrapolation(
     assert "300 MPa with eq. 16 on compressed bonds too" in rows["opal.bulk_strength"]["note"]
     assert float(rows["opal.coating20_E"]["packlab_value"]) == pytest.approx(5.9)
     assert rows["opal.coating20_E"]["within"] == "no"  # 5.9 against 5.96 +- 0.005
+
+
+def test_collect_reads_the_scrm_rows(tmp_path):
+    # Two cases per c with known contact values: the drop is 1 - SCRM/LS with the SD of a ratio of
+    # independent estimates; the M study is read from the paired ratio of the table.
+    head = ("case,c,method,move_rule,growth_rate,final_shakes,blocks_per_cycle,realizations,particles,"
+            "contact_value,contact_value_se,max_near_contact,max_near_contact_R,gap_R,gap_R_se,window_mean,"
+            "window_mean_se,window_variance,window_variance_se")
+    lines = [head]
+    for c, ls, sc in (("0.575", 10.0, 5.7), ("0.6", 16.0, 12.64), ("0.63", 40.0, 38.4)):
+        lines.append(f"mono-ls-c{c},{c},ls,,0.02,,,80,2000,{ls},0.1,{ls},2.01,2.8,0.02,10.9,0.01,0.84,0.006")
+        lines.append(f"mono-scrm-c{c},{c},scrm,metropolis,0.02,10,5,80,2000,{sc},0.1,{sc + 1},2.02,2.78,0.02,10.9,"
+                     "0.01,0.80,0.006")
+    (tmp_path / "scrm_mono.csv").write_text("\n".join(lines) + "\n")
+    (tmp_path / "scrm_contact_values.csv").write_text(
+        "case,c,method,move_rule,growth_rate,final_shakes,blocks_per_cycle,realizations,particles,dr,contact_value,"
+        "contact_value_se\n"
+        "mono-scrm-c0.575,0.575,scrm,metropolis,0.02,10,5,80,2000,0.015,5.5,0.1\n"
+        "mono-scrm-c0.575,0.575,scrm,metropolis,0.02,10,5,80,2000,0.01,5.7,0.1\n")
+    (tmp_path / "scrm_bimodal.csv").write_text(
+        "case,method,particles,final_shakes,realizations,pair,contact_value,contact_value_se,ratio_to_M60,"
+        "ratio_to_M60_se,gap_R,gap_R_se,peak_2.64,peak_2.64_se,peak_3.464,peak_3.464_se,peak_4.0,peak_4.0_se,"
+        "peak_4.54,peak_4.54_se\n"
+        "bi-ls-c0.6,ls,2000,,80,g11,20,0.2,,,2.33,0.01,2.63,0.01,3.46,0.01,4.0,0.01,,\n"
+        "bi-scrm-M60-c0.6,scrm,2000,60,80,g11,15,0.2,1,0,2.31,0.01,2.64,0.01,3.47,0.01,3.99,0.01,,\n"
+        "bi-scrm-M60-c0.6,scrm,2000,60,80,g12,6,0.1,1,0,3.3,0.02,,,,,,,,\n"
+        "bi-scrm-M60-c0.6,scrm,2000,60,80,g22,5,0.1,1,0,3.1,0.02,,,,,,,,\n"
+        "bi-scrm-M3-c0.6,scrm,2000,3,80,g11,16.8,0.2,1.12,0.01,2.31,0.01,,,,,,,,\n")
+    rows = {r["key"]: r for r in reproduction.collect(str(tmp_path))}
+    assert float(rows["scrm.g2a_drop_c0575"]["packlab_value"]) == pytest.approx(43.0)
+    assert float(rows["scrm.g2a_drop_c0575"]["packlab_sd"]) == pytest.approx(100 * 0.57 * (0.01 ** 2 + (0.1 / 5.7) ** 2)
+                                                                             ** 0.5, rel=0.05)  # 2 digits
+    assert rows["scrm.g2a_drop_c0575"]["within"] == "yes"
+    assert float(rows["scrm.g2a_drop_c060"]["packlab_value"]) == pytest.approx(21.0)
+    assert float(rows["scrm.g2a_drop_c063"]["packlab_value"]) == pytest.approx(4.0)
+    assert float(rows["scrm.gmax_change_c060"]["packlab_value"]) == pytest.approx(13.64 / 16)
+    assert rows["scrm.gmax_change_c060"]["within"] == "yes"  # < 1
+    assert float(rows["scrm.dr_015_to_010"]["packlab_value"]) == pytest.approx(100 * (5.7 / 5.5 - 1), rel=1e-3)
+    assert float(rows["scrm.window_variance_scrm"]["packlab_value"]) == pytest.approx(0.8 / 0.84, rel=1e-3)
+    assert rows["scrm.window_variance_ls"]["within"] == "n/a"  # the paper prints no number
+    assert float(rows["scrm.bimodal_g11_drop"]["packlab_value"]) == pytest.approx(25.0)
+    assert float(rows["scrm.bimodal_r11_peak_2.64"]["packlab_value"]) == pytest.approx(2.64)
+    assert rows["scrm.bimodal_r11_peak_4.54"]["packlab_value"] == ""  # not resolved
+    assert rows["scrm.bimodal_r11_peak_4.54"]["within"] == "n/a"
+    assert float(rows["scrm.bimodal_gap_g22"]["packlab_value"]) == pytest.approx(3.1)
+    assert float(rows["scrm.m_study_g11_m3_vs_m60"]["packlab_value"]) == pytest.approx(12.0)
+    assert rows["scrm.m_study_g11_m30_vs_m60"]["within"] == "n/a"  # not in the table
+
+
+def test_scrm_estimators_on_identical_fcc_realizations(tmp_path):
+    # Three copies of one FCC lattice: the averaged curve is the curve, every standard error is
+    # zero, the peak at 2 sqrt(3) a = 3.46 a is found, the empty shell between 2a and 2 sqrt(2) a
+    # has its "gap" in the middle of the interval searched, and a maximum at the end of an
+    # interval (the contact shell at its start) is "not resolved".
+    pytest.importorskip("packlab._core")
+    import packlab
+    sys.path.insert(0, os.path.join(ROOT, "examples", "scrm"))
+    import estimators
+    lattice = packlab.generate_lattice(type="fcc", cells=[4, 4, 4])
+    for k in (1, 2, 3):
+        (tmp_path / f"r{k}").mkdir()
+        packlab.write(lattice, str(tmp_path / f"r{k}" / "packing.xyz"))
+    case = estimators.Case(str(tmp_path), packlab, r_max=4.5, bin_widths=(0.005, 0.01))
+    value, se = case.contact_value()
+    assert case.realizations == 3 and se == 0.0
+    rdf = packlab.Rdf(dr=0.01, r_max=4.5)
+    rdf.compute(lattice)
+    assert value == pytest.approx(rdf.contact_value())
+    # 12 neighbours at 2a in [2a, 2a + dr): g+ is inversely proportional to dr.
+    assert case.contact_value(dr=0.005)[0] == pytest.approx(2 * value, rel=1e-3)
+    peak, peak_se = case.extremum((-1, -1), 3.3, 3.62, "max")
+    assert peak == pytest.approx(3.46) and peak_se == 0.0
+    assert case.extremum((-1, -1), 2.1, 2.5, "min")[0] == pytest.approx(2.3)
+    top, _ = case.extremum((-1, -1), 2.0, 2.2, "max")
+    assert top != top  # NaN
