@@ -65,9 +65,19 @@ class Case:
                 for pair in pairs:
                     self.contact[(pair, dr)].append(rdf.contact_value(*pair))
         self.r = np.asarray(paper.r, dtype=float)
+        radii = np.asarray(paper.class_radius, dtype=float)
+        self.class_radius = radii / radii[0]  # in units of a, the largest
         self.curves = {pair: np.vstack(c) for pair, c in self.curves.items()}
         self._draws = np.random.default_rng(12345).integers(0, self.realizations,
                                                             size=(BOOTSTRAP, self.realizations))
+
+    def axis(self, pair=(-1, -1)):
+        """The curve's abscissa: R = r/a for all particles, R_km = (r - a_k)/a_m + 1 for a pair of
+        classes (the paper's normalization of the partial RDFs, contact at R_km = 2)."""
+        k, m = pair
+        if k < 0:
+            return self.r
+        return (self.r - self.class_radius[k]) / self.class_radius[m] + 1.0
 
     def curve(self, pair=(-1, -1)):
         return self.curves[pair].mean(axis=0)
@@ -103,7 +113,8 @@ class Case:
         mean over `smooth` bins, in [lo, hi], with its bootstrap SE; NaN when the extremum found
         is at an end of the interval (no minimum or maximum inside: not resolved)."""
         half = smooth // 2
-        inside = np.nonzero((self.r >= lo) & (self.r <= hi))[0]
+        x = self.axis(pair)
+        inside = np.nonzero((x >= lo) & (x <= hi))[0]
 
         def where(g):
             s = np.convolve(g, np.ones(smooth) / smooth, mode="same")[inside]
@@ -113,15 +124,15 @@ class Case:
             q = inside[tied[len(tied) // 2]]
             if q - inside[0] < half or inside[-1] - q < half:
                 return float("nan")
-            return float(self.r[q])
+            return float(x[q])
 
         return self._bootstrap(self.curves[pair], where)
 
     def near_contact_max(self, pair=(-1, -1), hi=2.1):
-        g = self.curve(pair)
-        near = np.nonzero((self.r >= 1.99) & (self.r <= hi))[0]
+        g, x = self.curve(pair), self.axis(pair)
+        near = np.nonzero((x >= 1.99) & (x <= hi))[0]
         q = near[np.argmax(g[near])]
-        return float(g[q]), float(self.r[q])
+        return float(g[q]), float(x[q])
 
     def window_variance_se(self):
         v = np.asarray(self.window_variance)
