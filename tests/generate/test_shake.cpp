@@ -154,6 +154,20 @@ TEST(Shake, MetropolisSamplesTheUniformSeparationOfTwoSpheres) {
   EXPECT_GT(shaker.stats().moves, shaker.stats().visits / 2);
 }
 
+// SCRM shakes during growth, when the spheres are still tiny: the cell grid must follow the
+// particle count, not the radius (100 spheres of radius 5e-4 in a unit box asked for ~1e9 cells).
+TEST(Shake, TinySpheresInALargeBoxNeedFewCells) {
+  Packing p;
+  p.box.length = {1, 1, 1};
+  Random place(3);
+  for (int i = 0; i < 100; ++i) p.add({place.uniform(), place.uniform(), place.uniform()}, 5e-4);
+  generate::Shaker shaker(p, {});
+  Random rng(4);
+  shaker.sweeps(3, rng);
+  EXPECT_EQ(shaker.stats().moves, 300);
+  EXPECT_GE(generate::min_contact_ratio(p), 1.0);
+}
+
 TEST(Shake, OverlappingPackingIsRejected) {
   Packing p;
   p.box.length = {10, 10, 10};

@@ -46,14 +46,18 @@ Shaker::Shaker(Packing& packing, const ShakeParams& params) : p_(packing), param
     klass_[i] = k;
   }
   stats_.window.assign(class_radius_.size(), params_.window);
-  // Cells no smaller than the largest testing window.
+  // Cells no smaller than the largest testing window, and no more cells than about two per
+  // particle: SCRM shakes during growth, when the spheres are still small (a grid sized by their
+  // radius alone took gigabytes after one LS block).
   const double a_max = class_radius_[0];
   const double range = (2.0 + (params_.adaptive ? params_.max_window : params_.window)) * a_max * (1.0 + 1e-9);
+  const double sparse =
+      std::cbrt(p_.box.length[0] * p_.box.length[1] * p_.box.length[2] / (2.0 * static_cast<double>(n)));
   for (int a = 0; a < 3; ++a) {
     if (p_.box.periodic[a] && p_.box.length[a] < 2.0 * range)
       fail_input(fmt::format("box edge along {} = {:g} m: shaking needs at least {:g} m (two testing windows)",
                              "xyz"[a], p_.box.length[a], 2.0 * range));
-    n_[a] = std::clamp(static_cast<int>(std::floor(p_.box.length[a] / range)), 1, 1024);
+    n_[a] = std::clamp(static_cast<int>(std::floor(p_.box.length[a] / std::max(range, sparse))), 1, 1024);
     h_[a] = p_.box.length[a] / n_[a];
   }
   fill_cells();
