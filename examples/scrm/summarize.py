@@ -208,7 +208,7 @@ def main(out, docs):
         ls = mono.get(ls_reference(name, c))
         v, se = case.contact_value()
         drop = ""
-        if ls is not None and ls is not case:
+        if ls is not None and mono_cases(out)[name][1] == "scrm":
             ratio, rse = case.ratio(ls)
             drop = f"{100 * (1 - ratio):.1f} ± {100 * rse:.1f} %"
         top, top_r = case.near_contact_max()
