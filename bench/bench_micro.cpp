@@ -7,7 +7,7 @@
 //   ls_event/N               Lubachevsky-Stillinger event-driven MD, one block of 20 events per
 //                            particle at volume fraction 0.6 without growth (collisions/s, and
 //                            events/s counting neighbour-list transfers);
-//   shake_trial              Shaker sweeps of a dense random packing (trial moves/s);
+//   shake_trial/<rule>       Shaker sweeps of a dense random packing (trial moves/s, moves/s);
 //   engine_step/10000        dem::Engine::run(1), 1 thread, linear law (particle-steps/s).
 // Fixed seeds throughout; the rates are per CPU second of the benchmark thread (Google
 // Benchmark's default), so a machine loaded by other processes shows less in wall time.
@@ -185,17 +185,21 @@ void ls_event(benchmark::State& state) {
 }
 BENCHMARK(ls_event)->Arg(1000)->Arg(10000)->Unit(benchmark::kMillisecond);
 
-// Monte-Carlo shaking (default window 0.02, up to 150 trials per visit) of the 10^4-sphere
-// packing at 0.6: one sweep per iteration.
-void shake_trial(benchmark::State& state) {
+// Monte-Carlo shaking (window 0.02, up to 150 trials per visit) of the 10^4-sphere packing at
+// 0.6: one sweep per iteration, by the paper's rule (metropolis, the default) and by the
+// freest-direction rule.
+void shake_trial(benchmark::State& state, const char* rule) {
   Packing packing = dense_packing(10000);
-  generate::Shaker shaker(packing, generate::ShakeParams{});
+  generate::ShakeParams params;
+  params.move_rule = rule;
+  generate::Shaker shaker(packing, params);
   Random rng(5);
   for (auto _ : state) shaker.sweep(rng);
   state.SetItemsProcessed(shaker.stats().trials);
   state.counters["moves"] = benchmark::Counter(static_cast<double>(shaker.stats().moves), benchmark::Counter::kIsRate);
 }
-BENCHMARK(shake_trial)->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(shake_trial, metropolis, "metropolis")->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(shake_trial, freest, "freest")->Unit(benchmark::kMillisecond);
 
 // The 10^4-sphere packing at 0.6 scaled to 1 mm radii and inflated by 1 % (overlaps up to 2 %
 // of a radius, volume fraction 0.618), linear law with friction, local damping 0.7, relaxed for
