@@ -57,7 +57,10 @@ for r in rows("paper"):
     link(f"paper/runs/generate-{r['task']}", f"{case}/r{r['seed']}")
 for r in rows("rules"):
     rule = "freest" if r["move-rule"] == "freest" else f"metropolis{r['max-trials']}"
-    link(f"rules/runs/scrm-{r['task']}", f"mono-scrm-{rule}-c{r['phi']}/r{r['seed']}")
+    if r["sizes"] != "false":
+        link(f"rules/runs/scrm-{r['task']}", f"bi-scrm-{rule}-M{r['final-shakes']}-c{r['phi']}/r{r['seed']}")
+    else:
+        link(f"rules/runs/scrm-{r['task']}", f"mono-scrm-{rule}-c{r['phi']}/r{r['seed']}")
 for r in rows("diagnosis"):
     case = f"{r['method']}-G{r['growth-rate']}"
     if r["final-shakes"] not in ("false", "10"):

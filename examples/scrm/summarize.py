@@ -11,6 +11,7 @@ import sys
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, os.path.join(HERE, "..", "..", "python"))
+sys.path.insert(0, os.path.join(HERE, "..", "..", "build", "python"))  # the compiled module (packlab.Rdf)
 
 from packlab.plot import read_csv, save  # noqa: E402
 from packlab.plot import rdf as rdf_plot  # noqa: E402
@@ -100,7 +101,8 @@ def bimodal_data(out, data):
     import packlab
     cases = {"bi-ls-c0.6": ("ls", 2000, ""), "bi-scrm-c0.6": ("scrm", 2000, 10), "bi-scrm-M3-c0.6": ("scrm", 2000, 3),
              "bi-scrm-M30-c0.6": ("scrm", 2000, 30), "bi-scrm-M60-c0.6": ("scrm", 2000, 60),
-             "bi7000-scrm-c0.6": ("scrm", 7000, 3)}
+             "bi7000-scrm-c0.6": ("scrm", 7000, 3), "bi-scrm-freest-M60-c0.6": ("scrm", 2000, 60),
+             "bi-scrm-metropolis1-M60-c0.6": ("scrm", 2000, 60)}
     pairs = ((0, 0), (0, 1), (1, 1))
     measured = {name: estimators.Case(os.path.join(out, name), packlab, pairs=pairs, r_max=12.0,
                                       bin_widths=(estimators.PAPER_DR,))

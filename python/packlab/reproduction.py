@@ -492,7 +492,11 @@ def scrm_values(data):
         out["scrm.bimodal_g11_drop"] = _ours(
             100 * (1 - r), 100 * sd, sc["realizations"], sc["particles"],
             f"g11(2+) {f(ls, 'contact_value'):.2f} (LS) -> {f(sc, 'contact_value'):.2f} (SCRM, M = 60)" +
-            (f"; M = 10: {100 * (1 - f(m10, 'contact_value') / f(ls, 'contact_value')):.1f} %" if m10 else ""))
+            (f"; M = 10: {100 * (1 - f(m10, 'contact_value') / f(ls, 'contact_value')):.1f} %" if m10 else "") +
+            "".join(f"; {label}, M = 60: {100 * (1 - f(other, 'contact_value') / f(ls, 'contact_value')):.1f} %"
+                    for label, other in (("freest rule", bimodal.get(("bi-scrm-freest-M60-c0.6", "g11"))),
+                                         ("one-trial Metropolis", bimodal.get(("bi-scrm-metropolis1-M60-c0.6", "g11"))))
+                    if other))
         for peak in SCRM_G11_PEAKS:
             out[f"scrm.bimodal_r11_peak_{peak}"] = _ours(
                 f(sc, f"peak_{peak}"), f(sc, f"peak_{peak}_se"), sc["realizations"], sc["particles"],
