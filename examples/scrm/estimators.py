@@ -83,7 +83,9 @@ class Case:
         return self.curves[pair].mean(axis=0)
 
     def _bootstrap(self, values, statistic):
-        """statistic of the mean over realizations and its bootstrap SE; values: per realization."""
+        """statistic of the mean over realizations and its bootstrap SE; values: per realization.
+        Draws where the statistic is undefined (NaN: a peak or gap not found in that resample)
+        are left out of the SE."""
         values = np.asarray(values)
         value = statistic(values.mean(axis=0))
         if self.realizations < 2:
@@ -129,10 +131,13 @@ class Case:
         return self._bootstrap(self.curves[pair], where)
 
     def near_contact_max(self, pair=(-1, -1), hi=2.1):
+        """The largest value of the averaged g with 1.99 <= R <= hi, its position, and the
+        bootstrap standard error of that value."""
         g, x = self.curve(pair), self.axis(pair)
         near = np.nonzero((x >= 1.99) & (x <= hi))[0]
         q = near[np.argmax(g[near])]
-        return float(g[q]), float(x[q])
+        _, se = self._bootstrap(self.curves[pair], lambda curve: float(curve[near].max()))
+        return float(g[q]), float(x[q]), se
 
     def window_variance_se(self):
         v = np.asarray(self.window_variance)

@@ -73,14 +73,14 @@ def mono_data(out, data):
             v, se = case.contact_value(dr=dr)
             contact_rows.append({**base, "dr": dr, "contact_value": v, "contact_value_se": se})
         v, se = case.contact_value()
-        top, top_r = case.near_contact_max()
+        top, top_r, top_se = case.near_contact_max()
         gap_r, gap_se = case.extremum((-1, -1), 2.3, 3.2, "min")
         p2, p2_se = case.extremum((-1, -1), 3.3, 3.7, "max")
         p3, p3_se = case.extremum((-1, -1), 3.85, 4.2, "max")
         wm, wm_se = case.window_mean_se()
         wv, wv_se = case.window_variance_se()
         mono_rows.append({**base, "contact_value": v, "contact_value_se": se, "max_near_contact": top,
-                          "max_near_contact_R": top_r, "gap_R": gap_r, "gap_R_se": gap_se, "peak_2sqrt3_R": p2,
+                          "max_near_contact_se": top_se, "max_near_contact_R": top_r, "gap_R": gap_r, "gap_R_se": gap_se, "peak_2sqrt3_R": p2,
                           "peak_2sqrt3_R_se": p2_se, "peak_4_R": p3, "peak_4_R_se": p3_se, "window_mean": wm,
                           "window_mean_se": wm_se, "window_variance": wv, "window_variance_se": wv_se})
     head = ["case", "c", "method", "move_rule", "growth_rate", "final_shakes", "blocks_per_cycle", "realizations",
@@ -89,7 +89,7 @@ def mono_data(out, data):
         write_csv(os.path.join(data, "scrm_contact_values.csv"), head + ["dr", "contact_value", "contact_value_se"],
                   contact_rows)
         write_csv(os.path.join(data, "scrm_mono.csv"),
-                  head + ["contact_value", "contact_value_se", "max_near_contact", "max_near_contact_R", "gap_R",
+                  head + ["contact_value", "contact_value_se", "max_near_contact", "max_near_contact_se", "max_near_contact_R", "gap_R",
                           "gap_R_se", "peak_2sqrt3_R", "peak_2sqrt3_R_se", "peak_4_R", "peak_4_R_se", "window_mean",
                           "window_mean_se", "window_variance", "window_variance_se"], mono_rows)
     return measured, contact_rows
@@ -213,7 +213,7 @@ def main(out, docs):
         if ls is not None and mono_cases(out)[name][1] == "scrm":
             ratio, rse = case.ratio(ls)
             drop = f"{100 * (1 - ratio):.1f} ± {100 * rse:.1f} %"
-        top, top_r = case.near_contact_max()
+        top, top_r, _ = case.near_contact_max()
         gap_r, gap_se = case.extremum((-1, -1), 2.3, 3.2, "min")
         wv, wv_se = case.window_variance_se()
         lines.append(f"| {name} | {case.realizations} | {v:.2f} ± {se:.2f} | {drop} | {PAPER_DROP[c]} % | "

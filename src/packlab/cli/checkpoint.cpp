@@ -55,8 +55,12 @@ SavedRun read_command_checkpoint(const std::filesystem::path& dir, const io::Con
       fail_input(fmt::format("written by packlab {}, not packlab {}", command, settings.command()));
     std::vector<char> values;
     binary::read_vector(run.state, values, "settings", 1 << 24);
-    const nlohmann::json saved = nlohmann::json::parse(values.begin(), values.end(), nullptr, false);
+    nlohmann::json saved = nlohmann::json::parse(values.begin(), values.end(), nullptr, false);
     if (saved.is_discarded()) fail_input("checkpoint is damaged: settings");
+    // Shakes saved before move_rule existed were made by the freest-direction rule: resume them
+    // with it rather than with today's default.
+    if ((command == "shake" || command == "generate scrm") && saved.is_object() && !saved.contains("move_rule"))
+      saved["move_rule"] = "freest";
     settings.set_values(saved, "saved settings");
     binary::read_string(run.state, run.input, "input file");
     return run;

@@ -71,12 +71,13 @@ void add_generate_scrm(CLI::App& generate) {
     const generate::ScrmResult r = scrm->result();
     const std::filesystem::path dir(run.out);
     write_packing_outputs(r.packing, dir,
-                          fmt::format("packlab {} generate scrm phi={:.8f} N={} growth_rate={:g} window={:g} "
-                                      "final_shakes={} seed={}",
+                          fmt::format("packlab {} generate scrm phi={:.8f} N={} growth_rate={:g} move_rule={} "
+                                      "window={:g} final_shakes={} seed={}",
                                       io::version(), r.packing.volume_fraction(), r.packing.size(), sp.ls.growth_rate,
-                                      sp.shake.window, sp.final_shakes, o.seed));
+                                      sp.shake.move_rule, sp.shake.window, sp.final_shakes, o.seed));
     nlohmann::json report = io::report_header("generate scrm");
     report["parameters"] = ls_parameters(o);
+    report["parameters"]["move_rule"] = sp.shake.move_rule;
     report["parameters"]["window"] = sp.shake.window;
     report["parameters"]["max_trials"] = sp.shake.max_trials;
     report["parameters"]["adaptive"] = sp.shake.adaptive;

@@ -76,8 +76,9 @@ void add_shake(CLI::App& app) {
         const std::filesystem::path dir(c.out);
         write_packing_outputs(
             packing, dir,
-            fmt::format("packlab {} shake {} sweeps={} window={:g} max_trials={} seed={}", io::version(), c.in,
-                        run.o.sweeps, run.o.shake.window, run.o.shake.max_trials, run.o.seed));
+            fmt::format("packlab {} shake {} sweeps={} move_rule={} window={:g} max_trials={} seed={}", io::version(),
+                        c.in, run.o.sweeps, run.o.shake.move_rule, run.o.shake.window, run.o.shake.max_trials,
+                        run.o.seed));
         nlohmann::json report = io::report_header("shake");
         io::ShakeOptions reported = run.o;
         report["parameters"] = io::shake_options(reported).json();
