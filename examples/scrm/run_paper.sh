@@ -80,7 +80,9 @@ PY
 
 # Averaged RDFs (realizations in parallel inside analyze rdf).
 for d in "$OUT"/mono-*-c* "$OUT"/bi-*-c* "$OUT"/bi7000-*-c*; do
-  [ -f "$d/rdf/report.json" ] && continue
+  # Averaged already over the same number of realizations (another P averages again).
+  n=$(ls -d "$d"/r[0-9]* | wc -l)
+  [ -f "$d/rdf/report.json" ] && grep -q "\"realizations\": *$n[,}]" "$d/rdf/report.json" && continue
   "$PACKLAB" analyze rdf "$d"/r*/packing.xyz --partial --dr 0.01 --r-max 10 --out "$d/rdf" --quiet
 done
 
