@@ -29,6 +29,7 @@ void ShakeParams::validate() const {
 
 Shaker::Shaker(Packing& packing, const ShakeParams& params) : p_(packing), params_(params) {
   params_.validate();
+  metropolis_ = params_.move_rule == "metropolis";
   p_.validate();
   const std::size_t n = p_.size();
   if (n < 2) fail_input("particles = " + std::to_string(n) + ": shaking needs at least 2");
@@ -259,7 +260,7 @@ void Shaker::visit_metropolis(int i, Random& rng) {
 }
 
 void Shaker::visit(int i, Random& rng) {
-  if (params_.move_rule == "metropolis") {
+  if (metropolis_) {
     visit_metropolis(i, rng);
     return;
   }

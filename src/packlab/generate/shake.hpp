@@ -91,6 +91,7 @@ class Shaker {
   int cell_index(const Vec3& p) const;
   Packing& p_;
   ShakeParams params_;
+  bool metropolis_ = true;  // params_.move_rule, decided once (not per visit)
   ShakeStats stats_;
   std::vector<int> klass_;
   std::vector<double> class_radius_;
