@@ -25,6 +25,12 @@ PAPER_DR = 0.01
 BOOTSTRAP = 200
 
 
+def mean_se(values):
+    """Mean over the realizations and its standard error (SD / sqrt(P))."""
+    v = np.asarray(values, dtype=float)
+    return float(v.mean()), float(v.std(ddof=1) / math.sqrt(len(v)))
+
+
 def realizations(case):
     files = sorted(glob.glob(os.path.join(case, "r*", "packing.xyz")),
                    key=lambda p: int(os.path.basename(os.path.dirname(p))[1:]))
@@ -106,9 +112,8 @@ class Case:
         if paired:
             draws = [a[d].mean() / b[d].mean() for d in self._draws]
             return float(value), float(np.std(draws, ddof=1))
-        sa = a.std(ddof=1) / math.sqrt(len(a)) / a.mean()
-        sb = b.std(ddof=1) / math.sqrt(len(b)) / b.mean()
-        return float(value), float(value * math.hypot(sa, sb))
+        (ma, sa), (mb, sb) = mean_se(a), mean_se(b)
+        return float(value), float(value * math.hypot(sa / ma, sb / mb))
 
     def extremum(self, pair, lo, hi, kind="min", smooth=5):
         """Position (R = r/a) of the minimum or maximum of the averaged g, smoothed by a running
@@ -140,12 +145,10 @@ class Case:
         return float(g[q]), float(x[q]), se
 
     def window_variance_se(self):
-        v = np.asarray(self.window_variance)
-        return float(v.mean()), float(v.std(ddof=1) / math.sqrt(len(v)))
+        return mean_se(self.window_variance)
 
     def window_mean_se(self):
-        v = np.asarray(self.window_mean)
-        return float(v.mean()), float(v.std(ddof=1) / math.sqrt(len(v)))
+        return mean_se(self.window_mean)
 
 
 def fmt(v):

@@ -92,7 +92,7 @@ def mono_data(out, data):
                   head + ["contact_value", "contact_value_se", "max_near_contact", "max_near_contact_se", "max_near_contact_R", "gap_R",
                           "gap_R_se", "peak_2sqrt3_R", "peak_2sqrt3_R_se", "peak_4_R", "peak_4_R_se", "window_mean",
                           "window_mean_se", "window_variance", "window_variance_se"], mono_rows)
-    return measured, contact_rows
+    return measured, contact_rows, {r["case"]: r for r in mono_rows}
 
 
 def bimodal_data(out, data):
@@ -129,7 +129,7 @@ def bimodal_data(out, data):
         for label in G11_PEAKS:
             columns += [f"peak_{label}", f"peak_{label}_se"]
         write_csv(os.path.join(data, "scrm_bimodal.csv"), columns, rows)
-    return measured
+    return {(r["case"], r["pair"]): r for r in rows}
 
 
 def contact_vs_dr_figure(contact_rows, path):
@@ -164,60 +164,27 @@ def report(path):
         return json.load(f)
 
 
-def gap(rdf_csv, lo=2.3, hi=3.2):
-    """Position of the minimum of g between the first and second shell (smoothed over 5 bins)."""
-    d = read_csv(rdf_csv)
-    r, g = d["R"], d["g"]
-    best, where = 1e9, None
-    for k in range(2, len(r) - 2):
-        if lo <= r[k] <= hi:
-            s = sum(g[k - 2:k + 3]) / 5
-            if s < best:
-                best, where = s, r[k]
-    return where, best
-
-
-def near_contact_max(rdf_csv, hi=2.1):
-    d = read_csv(rdf_csv)
-    best = max((g, r) for r, g in zip(d["R"], d["g"]) if r <= hi)
-    return best[0], best[1]
-
-
-def partial_gaps(csv):
-    """Minima (smoothed over 5 bins) of g11 in R_11 [2.1, 2.5] and of g12, g22 in R_km [2.6, 4]."""
-    d = read_csv(csv)
-    out = {}
-    for (k, m), (lo, hi) in {(0, 0): (2.1, 2.5), (0, 1): (2.6, 4.0), (1, 1): (2.6, 4.0)}.items():
-        rows = [q for q in range(len(d["k"])) if int(d["k"][q]) == k and int(d["m"][q]) == m]
-        x = [d["R_km"][q] for q in rows]
-        g = [d["g"][q] for q in rows]
-        best = min((sum(g[q - 2:q + 3]) / 5, x[q]) for q in range(2, len(x) - 2) if lo <= x[q] <= hi)
-        out[f"g{k + 1}{m + 1}"] = best[1]
-    return out
-
-
 def main(out, docs):
     data = os.path.join(docs, "data")
-    mono, contact_rows = mono_data(out, data)
+    mono, contact_rows, mono_rows = mono_data(out, data)
     if contact_rows:
         contact_vs_dr_figure(contact_rows, os.path.join(docs, "img", "scrm_contact_vs_dr.png"))
-    bimodal_data(out, data)
+    bimodal_rows = bimodal_data(out, data)
     lines = ["## Monodisperse: contact value g(2a+) (dr = 0.01 a), SE over the realizations", "",
              "| case | P | g(2a+) | drop vs LS | paper drop | max g near contact (at R) | gap R | window variance |",
              "|---|---|---|---|---|---|---|---|"]
     for name, case in mono.items():
-        c = mono_cases(out)[name][0]
+        row = mono_rows[name]
+        c = row["c"]
         ls = mono.get(ls_reference(name, c))
-        v, se = case.contact_value()
         drop = ""
-        if ls is not None and mono_cases(out)[name][1] == "scrm":
+        if ls is not None and row["method"] == "scrm":
             ratio, rse = case.ratio(ls)
             drop = f"{100 * (1 - ratio):.1f} ± {100 * rse:.1f} %"
-        top, top_r, _ = case.near_contact_max()
-        gap_r, gap_se = case.extremum((-1, -1), 2.3, 3.2, "min")
-        wv, wv_se = case.window_variance_se()
-        lines.append(f"| {name} | {case.realizations} | {v:.2f} ± {se:.2f} | {drop} | {PAPER_DROP[c]} % | "
-                     f"{top:.2f} ({top_r:.2f}) | {gap_r:.2f} ± {gap_se:.2f} | {wv:.3f} ± {wv_se:.3f} |")
+        lines.append(f"| {name} | {row['realizations']} | {row['contact_value']:.2f} ± {row['contact_value_se']:.2f} | "
+                     f"{drop} | {PAPER_DROP[c]} % | {row['max_near_contact']:.2f} ({row['max_near_contact_R']:.2f}) | "
+                     f"{row['gap_R']:.2f} ± {row['gap_R_se']:.2f} | "
+                     f"{row['window_variance']:.3f} ± {row['window_variance_se']:.3f} |")
     for c in C_VALUES:
         ls = os.path.join(out, f"mono-ls-c{c}", "rdf")
         sc = os.path.join(out, f"mono-scrm-c{c}", "rdf")
@@ -236,12 +203,12 @@ def main(out, docs):
         if not os.path.exists(path):
             continue
         res = report(path)["results"]
-        gaps = partial_gaps(os.path.join(out, run, "rdf", "rdf_partial.csv"))
         for p in res["pairs"]:
             name = f"g{p['k'] + 1}{p['m'] + 1}"
+            gap_r = bimodal_rows.get((run, name), {}).get("gap_R", float("nan"))
             lines.append(f"| {run} (P = {res['realizations']}) | {name} | {p['contact_value']:.2f} | "
                          f"{p['percus_yevick']:.2f} | {', '.join(f'{x:.2f}' for x in p['peaks_R_km'])} | "
-                         f"{gaps[name]:.2f} |")
+                         f"{gap_r:.2f} |")
     parts = [os.path.join(out, r, "rdf", "rdf_partial.csv") for r in ("bi-ls-c0.6", "bi-scrm-c0.6", "bi7000-scrm-c0.6")]
     have = [p for p in parts if os.path.exists(p)]
     if have:

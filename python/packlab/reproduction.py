@@ -433,10 +433,15 @@ def opal_structure_values(data):
     return out
 
 
-def _ratio(a, sa, b, sb):
-    """a / b with the SD of independent estimates."""
-    r = a / b
-    return r, r * math.hypot(sa / a, sb / b)
+def _cell(row, column):
+    """A number of a table row; NaN where the row leaves it empty."""
+    return float(row[column]) if row.get(column) not in (None, "") else math.nan
+
+
+def _ratio(a, b, column):
+    """row a / row b in `column`, with the SD of independent estimates from `column`_se."""
+    r = _cell(a, column) / _cell(b, column)
+    return r, r * math.hypot(_cell(a, column + "_se") / _cell(a, column), _cell(b, column + "_se") / _cell(b, column))
 
 
 def scrm_values(data):
@@ -445,14 +450,13 @@ def scrm_values(data):
     (bootstrap for positions), the uncertainty of the paper's own averaged curves."""
     out = {}
     mono = {r["case"]: r for r in read_table(os.path.join(data, "scrm_mono.csv"))}
-    f = lambda row, column: float(row[column]) if row.get(column) not in (None, "") else math.nan
+    f = _cell
     rule = "the paper's rule (a point uniform in the 0.02a window, kept if free, up to N_sh = 150 tries)"
     for c, key in (("0.575", "c0575"), ("0.6", "c060"), ("0.63", "c063")):
         ls, sc = mono.get(f"mono-ls-c{c}"), mono.get(f"mono-scrm-c{c}")
         if not (ls and sc):
             continue
-        r, sd = _ratio(f(sc, "contact_value"), f(sc, "contact_value_se"), f(ls, "contact_value"),
-                       f(ls, "contact_value_se"))
+        r, sd = _ratio(sc, ls, "contact_value")
         note = (f"g(2a+) {f(ls, 'contact_value'):.2f} (LS, G = 0.02) -> {f(sc, 'contact_value'):.2f} (SCRM, M = 10, "
                 f"{rule}); dr = 0.01 a, K-function with toroidal edge correction; SD = standard error over the P "
                 "realizations")
@@ -461,8 +465,7 @@ def scrm_values(data):
                                             "minimum of the averaged g (5-bin running mean) in R = 2.3-3.2; SD by "
                                             "bootstrap over the realizations")
         if c == "0.6":
-            r, sd = _ratio(f(sc, "max_near_contact"), f(sc, "max_near_contact_se"), f(ls, "max_near_contact"),
-                           f(ls, "max_near_contact_se"))
+            r, sd = _ratio(sc, ls, "max_near_contact")
             out["scrm.gmax_change_c060"] = _ours(
                 r, sd, sc["realizations"], sc["particles"],
                 f"max of the averaged g within R <= 2.1: LS {f(ls, 'max_near_contact'):.2f} at "
@@ -472,8 +475,7 @@ def scrm_values(data):
                                                    ls["realizations"], ls["particles"],
                                                    "the paper's Fig. 4 gives the histograms, no number; mean count "
                                                    f"{f(ls, 'window_mean'):.2f}")
-            r, sd = _ratio(f(sc, "window_variance"), f(sc, "window_variance_se"), f(ls, "window_variance"),
-                           f(ls, "window_variance_se"))
+            r, sd = _ratio(sc, ls, "window_variance")
             out["scrm.window_variance_scrm"] = _ours(r, sd, sc["realizations"], sc["particles"],
                                                      f"SCRM variance {f(sc, 'window_variance'):.3f} against LS "
                                                      f"{f(ls, 'window_variance'):.3f}: " +
@@ -481,8 +483,7 @@ def scrm_values(data):
     by_dr = {(r["case"], float(r["dr"])): r for r in read_table(os.path.join(data, "scrm_contact_values.csv"))}
     coarse, paper_dr = by_dr.get(("mono-scrm-c0.575", 0.015)), by_dr.get(("mono-scrm-c0.575", 0.01))
     if coarse and paper_dr:
-        r, sd = _ratio(f(paper_dr, "contact_value"), f(paper_dr, "contact_value_se"), f(coarse, "contact_value"),
-                       f(coarse, "contact_value_se"))
+        r, sd = _ratio(paper_dr, coarse, "contact_value")
         ls = [by_dr.get(("mono-ls-c0.575", dr)) for dr in (0.015, 0.01)]
         note = (f"g(2a+) {f(coarse, 'contact_value'):.2f} at dr = 0.015 a, {f(paper_dr, 'contact_value'):.2f} at 0.01 a "
                 "(same realizations: the SD overstates the error); all bin widths in scrm_contact_values.csv")
@@ -492,8 +493,7 @@ def scrm_values(data):
     bimodal = {(r["case"], r["pair"]): r for r in read_table(os.path.join(data, "scrm_bimodal.csv"))}
     ls, sc = bimodal.get(("bi-ls-c0.6", "g11")), bimodal.get(("bi-scrm-M60-c0.6", "g11"))
     if ls and sc:
-        r, sd = _ratio(f(sc, "contact_value"), f(sc, "contact_value_se"), f(ls, "contact_value"),
-                       f(ls, "contact_value_se"))
+        r, sd = _ratio(sc, ls, "contact_value")
         m10 = bimodal.get(("bi-scrm-c0.6", "g11"))
         out["scrm.bimodal_g11_drop"] = _ours(
             100 * (1 - r), 100 * sd, sc["realizations"], sc["particles"],
@@ -524,8 +524,7 @@ def scrm_values(data):
                 f"{f(sc, 'contact_value'):.2f} at M = 60; the same seeds grow the same packings (paired)")
     big = bimodal.get(("bi7000-scrm-c0.6", "g11"))
     if big and sc:
-        r, sd = _ratio(f(big, "contact_value"), f(big, "contact_value_se"), f(sc, "contact_value"),
-                       f(sc, "contact_value_se"))
+        r, sd = _ratio(big, sc, "contact_value")
         out["scrm.m_study_n7000"] = _ours(100 * (r - 1), 100 * sd, big["realizations"], big["particles"],
                                           f"g11(2+) {f(big, 'contact_value'):.2f} (N = 7000, M = 3) against "
                                           f"{f(sc, 'contact_value'):.2f} (N = 2000, M = 60); the paper: \"close\"")
