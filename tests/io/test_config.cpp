@@ -5,6 +5,7 @@
 #include "../cli/cli_runner.hpp"
 #include "packlab/core/error.hpp"
 #include "packlab/io/config.hpp"
+#include "packlab/io/options.hpp"
 
 using namespace packlab;
 
@@ -193,4 +194,21 @@ TEST(ConfigSchema, ValuesRoundTripExactlyAndForeignKeysAreRefused) {
   EXPECT_THROW(schema(b).set_values(nlohmann::json{{"no_such_key", 1}}, "checkpoint"), InputError);
   EXPECT_THROW(schema(b).set_values(nlohmann::json{{"plots", "yes"}}, "checkpoint"), InputError);
   EXPECT_THROW(schema(b).set_values(nlohmann::json::array(), "checkpoint"), InputError);
+}
+
+// A key added after runs were saved: a record without it resumes with the value those runs
+// ran with (shakes before move_rule existed used the freest-direction rule), not today's default.
+TEST(ConfigSchema, KeysMissingFromASavedRecordTakeTheValueOldRunsRanWith) {
+  generate::ShakeParams params;
+  ASSERT_EQ(params.move_rule, "metropolis");  // today's default
+  io::ConfigSchema shake("shake");
+  io::add_shake_params(shake, params);
+  nlohmann::json old_record = shake.values();
+  old_record.erase("move_rule");
+  shake.set_values(old_record, "checkpoint");
+  EXPECT_EQ(params.move_rule, "freest");
+  nlohmann::json new_record = old_record;
+  new_record["move_rule"] = "metropolis";
+  shake.set_values(new_record, "checkpoint");
+  EXPECT_EQ(params.move_rule, "metropolis");
 }

@@ -55,12 +55,9 @@ SavedRun read_command_checkpoint(const std::filesystem::path& dir, const io::Con
       fail_input(fmt::format("written by packlab {}, not packlab {}", command, settings.command()));
     std::vector<char> values;
     binary::read_vector(run.state, values, "settings", 1 << 24);
-    nlohmann::json saved = nlohmann::json::parse(values.begin(), values.end(), nullptr, false);
+    const nlohmann::json saved = nlohmann::json::parse(values.begin(), values.end(), nullptr, false);
     if (saved.is_discarded()) fail_input("checkpoint is damaged: settings");
-    // Shakes saved before move_rule existed were made by the freest-direction rule: resume them
-    // with it rather than with today's default.
-    if ((command == "shake" || command == "generate scrm") && saved.is_object() && !saved.contains("move_rule"))
-      saved["move_rule"] = "freest";
+    // Keys added since the run was saved take the value it ran with (ConfigSchema::when_not_saved).
     settings.set_values(saved, "saved settings");
     binary::read_string(run.state, run.input, "input file");
     return run;

@@ -163,6 +163,10 @@ ConfigSchema& ConfigSchema::command_only() {
   last().python = false;
   return *this;
 }
+ConfigSchema& ConfigSchema::when_not_saved(nlohmann::json value) {
+  last().value_when_not_saved = std::move(value);
+  return *this;
+}
 ConfigSchema& ConfigSchema::append(const ConfigSchema& other) {
   fields_.insert(fields_.end(), other.fields_.begin(), other.fields_.end());
   return *this;
@@ -407,8 +411,11 @@ nlohmann::json ConfigSchema::values() const {
   return out;
 }
 
-void ConfigSchema::set_values(const nlohmann::json& values, std::string_view source) const {
-  if (!values.is_object()) fail_input(fmt::format("{}: the settings are not a table of keys", source));
+void ConfigSchema::set_values(const nlohmann::json& saved, std::string_view source) const {
+  if (!saved.is_object()) fail_input(fmt::format("{}: the settings are not a table of keys", source));
+  nlohmann::json values = saved;
+  for (const Field& f : fields_)
+    if (!f.value_when_not_saved.is_null() && !values.contains(f.key)) values[f.key] = f.value_when_not_saved;
   for (const auto& [key, value] : values.items()) {
     const Field* field = find(key);
     const std::string where = fmt::format("{}: {}", source, key);

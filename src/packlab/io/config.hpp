@@ -45,6 +45,9 @@ class ConfigSchema {
     bool python = true;                // a keyword of the Python function (else command line and file only)
     bool report = true;                // in json()
     Target target;
+    // The value a run saved before this key existed ran with (set_values() gives it to a saved
+    // record that lacks the key); null: such a record keeps the current value.
+    nlohmann::json value_when_not_saved = nullptr;
 
     std::string flag() const;                   // "--relax-max-steps"
     std::string keyword() const;                // "relax_max_steps"
@@ -93,6 +96,9 @@ class ConfigSchema {
   ConfigSchema& alias(std::string snake_name);
   // A setting of the command's run (output, analysis of its tables): command line and file only.
   ConfigSchema& command_only();
+  // A key added after runs were saved with the set: the value those runs ran with, which
+  // differs from today's default (a resumed old checkpoint must go on as it started).
+  ConfigSchema& when_not_saved(nlohmann::json value);
 
   // The fields of `other` (bound to its targets) after these.
   ConfigSchema& append(const ConfigSchema& other);
@@ -119,7 +125,7 @@ class ConfigSchema {
   // Every field's current value by key, reported or not: the settings of a run as its
   // checkpoint keeps them. set_values() puts such a record back (through set(), so a value that
   // does not fit its field is an InputError naming `source` and the key); keys it lacks keep
-  // their values, keys the set lacks are an InputError.
+  // their values or take their when_not_saved() value, keys the set lacks are an InputError.
   nlohmann::json values() const;
   void set_values(const nlohmann::json& values, std::string_view source) const;
   // Markdown section: a heading with the command and a table key | type | default | unit |

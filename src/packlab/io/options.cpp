@@ -199,6 +199,7 @@ void add_shake_params(ConfigSchema& schema, generate::ShakeParams& p) {
       .text("move_rule", p.move_rule,
             "Shake move: metropolis (a point uniform in the shake window, kept if free, up to max_trials tries) or "
             "freest (along the freest of max_trials directions)")
+      .when_not_saved("freest")  // the only rule before move_rule existed
       .number("window", p.window, "Shake window R_sh in units of the particle radius")
       .range({0.0, 1.0, true, false})
       .integer("max_trials", p.max_trials, "Trials per visit N_sh")
