@@ -88,7 +88,8 @@ void Engine::load_state(std::istream& in) {
         },
         models);
   };
-  const std::size_t history_size = read_histories(bond_model_, [](auto& m) -> auto& { return m.history; }, "bond histories");
+  const std::size_t history_size = read_histories(
+      bond_model_, [](auto& m) -> auto& { return m.history; }, "bond histories");
   std::uint64_t broken = 0;
   binary::read(in, broken, "broken bond count");
   if (wraps_.size() != n || bond_state.size() != bonds_.i.size() || history_size != bonds_.i.size())
@@ -96,8 +97,8 @@ void Engine::load_state(std::istream& in) {
   bonds_.state = std::move(bond_state);
   broken_bonds_ = broken;
   binary::read_vector(in, walls_, "walls");
-  const std::size_t wall_history_size =
-      read_histories(model_, [](auto& m) -> auto& { return m.wall_history; }, "wall contact histories");
+  const std::size_t wall_history_size = read_histories(
+      model_, [](auto& m) -> auto& { return m.wall_history; }, "wall contact histories");
   binary::read_vector(in, wall_force_, "wall forces");
   if (wall_history_size != n * walls_.size() || wall_force_.size() != walls_.size())
     fail_input("checkpoint is damaged: wall data do not match");
@@ -110,11 +111,12 @@ void Engine::load_state(std::istream& in) {
   masses_changed();
   neighbors_.load(in);
   std::visit([&](auto& model) { binary::read_vector(in, model.history, "contact histories"); }, model_);
-  if (neighbors_.particle_count() != n || std::visit([&](auto& m) { return m.history.size(); }, model_) !=
-                                              neighbors_.pair_count())
+  if (neighbors_.particle_count() != n ||
+      std::visit([&](auto& m) { return m.history.size(); }, model_) != neighbors_.pair_count())
     fail_input("checkpoint is damaged: contact histories do not match the neighbour list");
   binary::read_vector(in, breaks_, "bond breaks");
   mark_bonded_pairs();
+  fill_pair_owners();
   partition_work();
 }
 

@@ -13,8 +13,8 @@ ContactGeometry Engine::pair_geometry(std::size_t i, std::size_t j, const Vec3& 
   g.overlap = P.radius[i] + P.radius[j] - distance;
   g.branch_i = P.radius[i] - 0.5 * g.overlap;
   g.branch_j = P.radius[j] - 0.5 * g.overlap;
-  g.relative_velocity =
-      P.velocity[j] - P.velocity[i] - cross(g.branch_j * P.angular_velocity[j] + g.branch_i * P.angular_velocity[i], g.normal);
+  g.relative_velocity = P.velocity[j] - P.velocity[i] -
+                        cross(g.branch_j * P.angular_velocity[j] + g.branch_i * P.angular_velocity[i], g.normal);
   g.mean_spin = 0.5 * (P.angular_velocity[i] + P.angular_velocity[j]);
   g.dt = dt_;
   g.radius_i = P.radius[i];
@@ -76,16 +76,16 @@ ContactForces Engine::contact_forces() const {
       model_);
   std::visit(
       [&](const auto& bonds) {
-    for (std::size_t b = 0; b < bonds_.i.size(); ++b) {
-      if (bonds_.state[b] != 0) continue;
-      const std::size_t i = static_cast<std::size_t>(bonds_.i[b]), j = static_cast<std::size_t>(bonds_.j[b]);
-      const Vec3 d = P.position[j] + packing_.box.shift_vector(bond_image_now(b)) - P.position[i];
-      auto history = bonds.history[b];
-      ContactGeometry g = as_stored(pair_geometry(i, j, d, norm(d)));
-      g.rest_length = bonds_.rest_length[b];
-      const BondForce f = bonds.law.evaluate(g, bonds.params(bonds_.material[b]), history);
-      push(original_index_[i], original_index_[j], ContactForces::bond, d, f.force_on_j);
-    }
+        for (std::size_t b = 0; b < bonds_.i.size(); ++b) {
+          if (bonds_.state[b] != 0) continue;
+          const std::size_t i = static_cast<std::size_t>(bonds_.i[b]), j = static_cast<std::size_t>(bonds_.j[b]);
+          const Vec3 d = bond_vector(b);
+          auto history = bonds.history[b];
+          ContactGeometry g = as_stored(pair_geometry(i, j, d, norm(d)));
+          g.rest_length = bonds_.rest_length[b];
+          const BondForce f = bonds.law.evaluate(g, bonds.params(bonds_.material[b]), history);
+          push(original_index_[i], original_index_[j], ContactForces::bond, d, f.force_on_j);
+        }
       },
       bond_model_);
   return out;

@@ -210,7 +210,12 @@ Engine::Engine(const Packing& packing, const EngineConfig& config) : packing_(pa
           config_.thread_probe_every, "> 0 s");
   require(config_.thread_probe_seconds > 0.0 && config_.thread_probe_seconds <= 60.0, "thread_probe_seconds",
           config_.thread_probe_seconds, "in (0, 60] s");
-  tuning_.configured = tuning_.best = threads_;
+  tuning_.configured = threads_;
+  // Adapting, the engine starts at one thread and takes more when probes find them faster
+  // twice in a row (tune_threads): on a loaded machine the configured count can be several
+  // times slower than one thread, and a single probe sometimes picks it (docs/engine.md).
+  if (config_.adapt_threads) threads_ = 1;
+  tuning_.best = threads_;
   // The first probe after a few hundred steps: the first ones touch memory for the first time.
   tuning_.steps_to_probe = 300;
   // Everything per particle and per bond now lives in particles_, density_ and bonds_:
@@ -279,14 +284,11 @@ void Engine::masses_changed() {
 
 std::vector<double> Engine::bond_strains() const {
   std::vector<double> strain(bonds_.i.size(), std::numeric_limits<double>::quiet_NaN());
-  const auto& P = particles_;
   std::visit(
       [&](const auto& model) {
         for (std::size_t b = 0; b < bonds_.i.size(); ++b) {
           if (bonds_.state[b] != 0 || model.law.failed(model.history[b]) || !(bonds_.rest_length[b] > 0.0)) continue;
-          const std::size_t i = static_cast<std::size_t>(bonds_.i[b]), j = static_cast<std::size_t>(bonds_.j[b]);
-          const Vec3 d = P.position[j] + packing_.box.shift_vector(bond_image_now(b)) - P.position[i];
-          strain[b] = (norm(d) - bonds_.rest_length[b]) / bonds_.rest_length[b];
+          strain[b] = (norm(bond_vector(b)) - bonds_.rest_length[b]) / bonds_.rest_length[b];
         }
       },
       bond_model_);

@@ -72,9 +72,10 @@ struct EngineConfig {
   //   config.bond_materials = BondMaterialList<ElasticBond>{{.youngs_modulus = 6.5e9}};
   BondMaterials bond_materials;
   int threads = 0;  // 0 = OpenMP default
-  // With more than one thread: now and then (every `thread_probe_every` seconds, the first
-  // time after 300 steps) time stretches of steps at one thread and at `threads`, alternating
-  // (other, current, other, current), and run at the faster until the next probe. On a machine
+  // With more than one thread: start at one thread, and now and then (every
+  // `thread_probe_every` seconds, the first time after 300 steps) time stretches of steps at
+  // one thread and at `threads`, alternating (other, current, other, current), and run at the
+  // faster until the next probe; a change needs two probes in a row that agree. On a machine
   // whose cores other jobs use, threads waiting for each other at the step's barriers can make
   // two threads slower than one (docs/engine.md, "Parallelism"). The results do not depend on
   // the thread count, so a switch changes no bit of them.
@@ -311,7 +312,10 @@ class Engine {
   void tune_threads();
   void set_active_threads(int threads);
   void mark_bonded_pairs();
-  // Splits particles, pairs and bonds among the threads (after every neighbour rebuild).
+  // Each listed pair's particle i (after every neighbour rebuild).
+  void fill_pair_owners();
+  // Splits particles, pairs and bonds among the threads (after every neighbour rebuild and
+  // every change of the thread count).
   void partition_work();
   template <class Law, bool OneType, bool Indirect>
   void gather_pairs(ContactModel<Law>& model, const int* pairs, int start, int count, int skip_from,
@@ -326,6 +330,8 @@ class Engine {
   double wall_forces(ContactModel<Law>& model, double* stiffness, double* measure_energy, double* measure_force,
                      std::size_t* wall_contacts);
   std::array<int, 3> bond_image_now(std::size_t b) const;
+  // From bond b's particle i to the image of its particle j that it holds, now.
+  Vec3 bond_vector(std::size_t b) const;
   void update_mass(std::size_t k);
   double heaviest_particle_time_step() const;
   // What the laws read about the pair (i, j) whose touching image of j sits at x_i + d
@@ -377,7 +383,9 @@ class Engine {
     long phase_steps = 0;
     double other_seconds = 0.0, best_seconds = 0.0;  // summed over the probe's stretches
     long other_steps = 0, best_steps = 0;
+    bool confirming = false;  // this probe repeats one that favoured the other count
     long switches = 0;
+    static constexpr long untimed_steps = 2;  // after each switch
   } tuning_;
   double dt_ = 0.0;
   double time_step_cap_ = 0.0;  // contacts rule: max_time_step or the heaviest particle's step

@@ -21,6 +21,7 @@ void Engine::refresh_neighbors() {
       },
       model_);
   mark_bonded_pairs();
+  fill_pair_owners();
   partition_work();
 }
 
@@ -28,6 +29,12 @@ std::array<int, 3> Engine::bond_image_now(std::size_t b) const {
   const auto& wi = wraps_[static_cast<std::size_t>(bonds_.i[b])];
   const auto& wj = wraps_[static_cast<std::size_t>(bonds_.j[b])];
   return {bonds_.image[b][0] + wj[0] - wi[0], bonds_.image[b][1] + wj[1] - wi[1], bonds_.image[b][2] + wj[2] - wi[2]};
+}
+
+Vec3 Engine::bond_vector(std::size_t b) const {
+  const auto& x = particles_.position;
+  return x[static_cast<std::size_t>(bonds_.j[b])] + packing_.box.shift_vector(bond_image_now(b)) -
+         x[static_cast<std::size_t>(bonds_.i[b])];
 }
 
 void Engine::mark_bonded_pairs() {

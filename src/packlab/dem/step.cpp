@@ -46,13 +46,18 @@ int chunk_count(int n) { return (n + chunk_size - 1) / chunk_size; }
 
 }  // namespace
 
+void Engine::fill_pair_owners() {
+  const int n = static_cast<int>(particles_.size());
+  const auto& first = neighbors_.first_pairs();
+  pair_owner_.resize(neighbors_.partner().size());
+  for (int i = 0; i < n; ++i) std::fill(pair_owner_.begin() + first[i], pair_owner_.begin() + first[i + 1], i);
+}
+
 void Engine::partition_work() {
   const int n = static_cast<int>(particles_.size());
   const int T = threads_;
   const auto& first = neighbors_.first_pairs();
   const auto& partner = neighbors_.partner();
-  pair_owner_.resize(partner.size());
-  for (int i = 0; i < n; ++i) std::fill(pair_owner_.begin() + first[i], pair_owner_.begin() + first[i + 1], i);
   // Ranges holding about equal work: a listed pair counts 1, a bond 2 (its law does more).
   auto work_before = [&](int i) { return static_cast<long>(first[i]) + 2L * bond_first_[i]; };
   const long total = work_before(n);
@@ -260,8 +265,7 @@ void Engine::bond_contribution(BondModel<BondLaw>& model, std::size_t b, Contrib
   out.particle_j = owner_is_i ? j : i;
   if (bonds_.state[b] != 0) return;
   const auto& P = particles_;
-  const Box& box = packing_.box;
-  const Vec3 d = P.position[j] + box.shift_vector(bond_image_now(b)) - P.position[i];
+  const Vec3 d = bond_vector(b);
   const double dist = norm(d);
   if (!(dist > 0.0)) return;  // coincident centres: no direction to act along
   ContactGeometry g = pair_geometry(static_cast<std::size_t>(i), static_cast<std::size_t>(j), d, dist);
@@ -502,9 +506,7 @@ void Engine::pair_forces(ContactModel<Law>& model, Totals& totals) {
     for (const int b : work.failed_bonds) {
       const auto bond = static_cast<std::size_t>(b);
       const Vec3& xi = particles_.position[static_cast<std::size_t>(bonds_.i[bond])];
-      const Vec3 d = particles_.position[static_cast<std::size_t>(bonds_.j[bond])] +
-                     packing_.box.shift_vector(bond_image_now(bond)) - xi;
-      breaks_.push_back(BondBreak{bond, time_, packing_.box.wrap(xi + 0.5 * d)});
+      breaks_.push_back(BondBreak{bond, time_, packing_.box.wrap(xi + 0.5 * bond_vector(bond))});
     }
     if constexpr (Measure) {
       totals.contacts += work.totals.contacts;
@@ -631,8 +633,12 @@ void Engine::set_active_threads(int threads) {
 // adapt_threads: runs at the faster of one thread and the configured count. A probe times four
 // stretches, alternating the other count and the current best (other, best, other, best), so
 // that a load that changes during the probe weighs on both alike; each stretch lasts at least
-// 10 steps and thread_probe_seconds (0.1 s: many scheduler time slices, so that a busy
-// machine's noise, timer resolution and a single neighbour rebuild do not decide).
+// 10 timed steps and thread_probe_seconds (0.1 s: many scheduler time slices, so that a busy
+// machine's noise, timer resolution and a single neighbour rebuild do not decide). The first
+// steps after a switch are not timed (threads woken from sleep, caches of the other layout).
+// A probe that favours the other count is repeated at once, and the count changes only if
+// the second agrees: on a loaded machine a single probe sometimes picked the slower count
+// (docs/engine.md, "Parallelism").
 void Engine::tune_threads() {
   ThreadTuning& t = tuning_;
   if (t.configured == 1 || !config_.adapt_threads) return;
@@ -646,19 +652,33 @@ void Engine::tune_threads() {
     t.other_steps = t.best_steps = 0;
     t.phase = 1;
     t.phase_steps = 0;
-    t.phase_start = now;
     set_active_threads(other);
   } else {
-    const double elapsed = std::chrono::duration<double>(now - t.phase_start).count();
-    if (t.phase_steps >= 10 && elapsed >= config_.thread_probe_seconds) {
+    if (t.phase_steps == ThreadTuning::untimed_steps) t.phase_start = now;
+    const double elapsed =
+        t.phase_steps >= ThreadTuning::untimed_steps ? std::chrono::duration<double>(now - t.phase_start).count() : 0.0;
+    const long timed_steps = t.phase_steps - ThreadTuning::untimed_steps;
+    if (timed_steps >= 10 && elapsed >= config_.thread_probe_seconds) {
       const bool timing_other = t.phase % 2 == 1;
       (timing_other ? t.other_seconds : t.best_seconds) += elapsed;
-      (timing_other ? t.other_steps : t.best_steps) += t.phase_steps;
+      (timing_other ? t.other_steps : t.best_steps) += timed_steps;
       if (t.phase == 4) {
         // A 3 % margin: a count that is about as fast does not take over on noise.
         const double other_per_step = t.other_seconds / static_cast<double>(t.other_steps);
         const double best_per_step = t.best_seconds / static_cast<double>(t.best_steps);
-        if (other_per_step < 0.97 * best_per_step) t.best = other;
+        const bool other_faster = other_per_step < 0.97 * best_per_step;
+        if (other_faster && !t.confirming) {
+          // Probe again at once; switch only if that one agrees.
+          t.confirming = true;
+          t.other_seconds = t.best_seconds = 0.0;
+          t.other_steps = t.best_steps = 0;
+          t.phase = 1;
+          t.phase_steps = 0;
+          set_active_threads(other);
+          return;
+        }
+        if (other_faster) t.best = other;
+        t.confirming = false;
         set_active_threads(t.best);
         t.phase = 0;
         t.next_probe = now + std::chrono::duration_cast<Clock::duration>(
@@ -667,7 +687,6 @@ void Engine::tune_threads() {
       }
       ++t.phase;
       t.phase_steps = 0;
-      t.phase_start = now;
       set_active_threads(t.phase % 2 == 1 ? other : t.best);
     }
   }
