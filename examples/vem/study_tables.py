@@ -98,6 +98,8 @@ def run_name(group, row):
         return "phi" + row["phi-s"].replace(".", "")
     if group == "mass":
         return "n050_mass025"
+    if group == "stiffness_limit":
+        return f"stiffness_kns1e3_knv{row['knv']}_limit{int(row['relax-max-steps']):05d}"
     if group == "kn_limit":
         return f"stiffness_kns1e3_knv1e-2_limit{int(row['relax-max-steps']):05d}"
     if group == "phi_ns4000":

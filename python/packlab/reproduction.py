@@ -191,7 +191,7 @@ def vem_values(data):
                             ("vem.phi_ti_over_n", "phi_total_i"), ("vem.beta", "beta")):
             m, s = mean_sd(r[column] for r in series)
             out[key] = _ours(m, s, k, particles, f"{what}; mean and SD over the runs, as the paper's over n")
-    phis = read_table(os.path.join(data, "vem_phi_ns4000.csv"))
+    phis = sorted(read_table(os.path.join(data, "vem_phi_ns4000.csv")), key=lambda r: float(r["phi_s"]))
     if phis:
         m, s = mean_sd(r["phi_total_i"] for r in phis)
         out["vem.phi_ti_over_phis"] = _ours(m, s, len(phis), "4000", "N_S = 4000, N_V = 2000, Phi_S = " + ", ".join(
