@@ -1,0 +1,79 @@
+#!/usr/bin/env python3
+"""Which bonds eq. 16 may break, tested on the porosity study's samples (docs/reproduction.md,
+`opal.porosity_strength_*` and `opal.eq26_*`): the same samples compressed with eq. 16 on
+stretched bonds only (MUSEN's reading, packlab's default: examples/study/opal_porosity_paper.toml)
+and on compressed bonds too (examples/study/opal_porosity_compressive.toml). Writes
+
+  DATA/opal_porosity_breakage_reading.csv   per reading and pore fraction: E and strength, mean
+                                            and SD over the seeds; and per reading (pore_fraction
+                                            empty) the exponent b of eq. 26, sigma = sigma0
+                                            exp(-b eps), fitted per seed over the pore fractions
+                                            both studies hold (eps: the box's pore fraction, as
+                                            porosity_tables.py), mean and SD over the seeds
+
+usage: breakage_reading.py TENSION_OUT COMPRESSIVE_OUT [DATA]   (the two studies' --out folders)"""
+
+import csv
+import math
+import os
+import sys
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "python"))
+from packlab.reproduction import mean_sd  # noqa: E402
+from packlab.tables import write_table  # noqa: E402
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+
+
+def samples(out):
+    with open(os.path.join(out, "tasks.csv")) as f:
+        return {(float(t["opal.pore-fraction"]), int(t["seed"])): t for t in csv.DictReader(f) if t["status"] == "done"}
+
+
+def slope(xs, ys):
+    mx, my = sum(xs) / len(xs), sum(ys) / len(ys)
+    return sum((x - mx) * (y - my) for x, y in zip(xs, ys)) / sum((x - mx) ** 2 for x in xs)
+
+
+def main(argv):
+    if len(argv) < 3:
+        sys.exit(__doc__)
+    data = argv[3] if len(argv) > 3 else os.path.join(HERE, "..", "..", "docs", "data")
+    readings = {"tension_only": samples(argv[1]), "tension_and_compression": samples(argv[2])}
+    common = set.intersection(*(set(s) for s in readings.values()))
+    fractions = sorted({f for f, _ in common})
+    seeds = sorted({s for _, s in common})
+    if len(fractions) < 2:
+        sys.exit("breakage_reading: the two studies share fewer than two pore fractions")
+    rows = []
+    for name, found in readings.items():
+        for f in fractions:
+            level = [found[(f, s)] for s in seeds if (f, s) in common]
+            e_mean, e_sd = mean_sd(float(t["compress.youngs_modulus"]) for t in level)
+            s_mean, s_sd = mean_sd(float(t["compress.strength"]) for t in level)
+            b_mean, b_sd = mean_sd(float(t["compress.broken_bonds"]) for t in level)
+            rows.append({"reading": name, "pore_fraction": f"{f:g}", "seeds": len(level),
+                         "youngs_modulus_mean": f"{e_mean:.6g}", "youngs_modulus_sd": f"{e_sd:.3g}",
+                         "strength_mean": f"{s_mean:.6g}", "strength_sd": f"{s_sd:.3g}",
+                         "broken_bonds_mean": f"{b_mean:.6g}", "eq26_b_mean": "", "eq26_b_sd": ""})
+        per_seed = []
+        for s in seeds:
+            pts = [(float(found[(f, s)]["opal.parameters.pores.pore_fraction_of_region"]),
+                    math.log(float(found[(f, s)]["compress.strength"]))) for f in fractions if (f, s) in common]
+            if len(pts) >= 2:
+                per_seed.append(-slope([p[0] for p in pts], [p[1] for p in pts]))
+        m, sd = mean_sd(per_seed)
+        rows.append({"reading": name, "pore_fraction": "", "seeds": len(per_seed), "youngs_modulus_mean": "",
+                     "youngs_modulus_sd": "", "strength_mean": "", "strength_sd": "", "broken_bonds_mean": "",
+                     "eq26_b_mean": f"{m:.4g}", "eq26_b_sd": f"{sd:.3g}"})
+    path = os.path.join(data, "opal_porosity_breakage_reading.csv")
+    write_table(path, {k: [r[k] for r in rows] for k in rows[0]},
+                "examples/opal/breakage_reading.py: eq. 16 on stretched bonds only against stretched and "
+                "compressed bonds, same samples; E [Pa], strength [Pa]; eq26_b over pore fractions " +
+                ", ".join(f"{f:g}" for f in fractions))
+    print(f"wrote {path} ({len(rows)} rows)")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main(sys.argv))
