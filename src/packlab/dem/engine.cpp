@@ -211,9 +211,9 @@ Engine::Engine(const Packing& packing, const EngineConfig& config) : packing_(pa
   require(config_.thread_probe_seconds > 0.0 && config_.thread_probe_seconds <= 60.0, "thread_probe_seconds",
           config_.thread_probe_seconds, "in (0, 60] s");
   tuning_.configured = threads_;
-  // Adapting, the engine starts at one thread and takes more when probes find them faster
-  // twice in a row (tune_threads): on a loaded machine the configured count can be several
-  // times slower than one thread, and a single probe sometimes picks it (docs/engine.md).
+  // Adapting, the engine starts at one thread and goes up when two probes in a row find more
+  // threads faster (tune_threads): on a loaded machine more threads can be several times slower
+  // than one, and a probe sometimes misjudges (docs/engine.md, "Parallelism").
   if (config_.adapt_threads) threads_ = 1;
   tuning_.best = threads_;
   // The first probe after a few hundred steps: the first ones touch memory for the first time.

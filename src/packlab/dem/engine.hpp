@@ -72,10 +72,10 @@ struct EngineConfig {
   //   config.bond_materials = BondMaterialList<ElasticBond>{{.youngs_modulus = 6.5e9}};
   BondMaterials bond_materials;
   int threads = 0;  // 0 = OpenMP default
-  // With more than one thread: start at one thread, and now and then (every
-  // `thread_probe_every` seconds, the first time after 300 steps) time stretches of steps at
-  // one thread and at `threads`, alternating (other, current, other, current), and run at the
-  // faster until the next probe; a change needs two probes in a row that agree. On a machine
+  // With more than one thread: start at one thread; now and then (every `thread_probe_every`
+  // seconds, the first time after 300 steps) time stretches of steps at one thread and at
+  // `threads`, alternating (other, current, other, current), and run at the faster until the
+  // next probe; going up to `threads` needs two probes in a row that agree. On a machine
   // whose cores other jobs use, threads waiting for each other at the step's barriers can make
   // two threads slower than one (docs/engine.md, "Parallelism"). The results do not depend on
   // the thread count, so a switch changes no bit of them.
@@ -383,7 +383,7 @@ class Engine {
     long phase_steps = 0;
     double other_seconds = 0.0, best_seconds = 0.0;  // summed over the probe's stretches
     long other_steps = 0, best_steps = 0;
-    bool confirming = false;  // this probe repeats one that favoured the other count
+    bool confirming = false;  // this probe repeats one that favoured more threads
     long switches = 0;
     static constexpr long untimed_steps = 2;  // after each switch
   } tuning_;

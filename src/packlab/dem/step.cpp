@@ -636,9 +636,10 @@ void Engine::set_active_threads(int threads) {
 // 10 timed steps and thread_probe_seconds (0.1 s: many scheduler time slices, so that a busy
 // machine's noise, timer resolution and a single neighbour rebuild do not decide). The first
 // steps after a switch are not timed (threads woken from sleep, caches of the other layout).
-// A probe that favours the other count is repeated at once, and the count changes only if
-// the second agrees: on a loaded machine a single probe sometimes picked the slower count
-// (docs/engine.md, "Parallelism").
+// A probe that favours more threads is repeated at once, and the count goes up only if the
+// second agrees: on a loaded machine a single probe sometimes picked the slower count, and
+// too many threads there cost more than one thread costs on an idle machine (docs/engine.md,
+// "Parallelism"). Going down to one thread takes one probe.
 void Engine::tune_threads() {
   ThreadTuning& t = tuning_;
   if (t.configured == 1 || !config_.adapt_threads) return;
@@ -667,13 +668,13 @@ void Engine::tune_threads() {
         const double other_per_step = t.other_seconds / static_cast<double>(t.other_steps);
         const double best_per_step = t.best_seconds / static_cast<double>(t.best_steps);
         const bool other_faster = other_per_step < 0.97 * best_per_step;
-        if (other_faster && !t.confirming) {
-          // Probe again at once; switch only if that one agrees.
+        if (other_faster && other > t.best && !t.confirming) {
+          // Probe again at once; go up only if that one agrees.
           t.confirming = true;
           t.other_seconds = t.best_seconds = 0.0;
           t.other_steps = t.best_steps = 0;
           t.phase = 1;
-          t.phase_steps = 0;
+          t.phase_steps = 1;  // this step is the stretch's first, as after every other switch
           set_active_threads(other);
           return;
         }

@@ -111,7 +111,9 @@ void add_engine_options(ConfigSchema& schema, EngineSettings& s) {
       .range(ranges::non_negative)
       .number("skin_ratio", s.engine.skin_ratio, "Verlet skin as a fraction of the largest radius")
       .range(ranges::positive)
-      .integer("threads", s.engine.threads, "OpenMP threads (0 = all cores); results are reproducible per count")
+      .integer("threads", s.engine.threads,
+               "OpenMP threads (0 = all cores): the engine starts at one and uses these while probes find them "
+               "faster (docs/engine.md); the results do not depend on the count")
       .range({0.0, 1024.0, false, false});
 }
 
