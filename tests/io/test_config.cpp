@@ -211,4 +211,10 @@ TEST(ConfigSchema, KeysMissingFromASavedRecordTakeTheValueOldRunsRanWith) {
   new_record["move_rule"] = "metropolis";
   shake.set_values(new_record, "checkpoint");
   EXPECT_EQ(params.move_rule, "metropolis");
+  // A value that does not fit its field is refused where it is declared.
+  std::string rule;
+  io::ConfigSchema wrong("shake");
+  wrong.text("move_rule", rule, "a rule");
+  EXPECT_THROW(wrong.when_not_saved(3), std::logic_error);
+  EXPECT_NO_THROW(wrong.when_not_saved("freest"));
 }

@@ -164,6 +164,15 @@ ConfigSchema& ConfigSchema::command_only() {
   return *this;
 }
 ConfigSchema& ConfigSchema::when_not_saved(nlohmann::json value) {
+  // A value of the wrong type would surface only when an old checkpoint is resumed, as an
+  // error blaming the saved settings: refuse it where it is declared.
+  const std::string& type = last().type;
+  const bool fits = (type == "number" && value.is_number()) || (type == "integer" && value.is_number_integer()) ||
+                    (type == "boolean" && value.is_boolean()) || (type == "string" && value.is_string()) ||
+                    (type == "numbers" && value.is_array() &&
+                     std::all_of(value.begin(), value.end(), [](const auto& x) { return x.is_number(); }));
+  if (!fits)
+    throw std::logic_error(fmt::format("when_not_saved({}) does not fit {} field {}", value.dump(), type, last().key));
   last().value_when_not_saved = std::move(value);
   return *this;
 }
@@ -414,8 +423,13 @@ nlohmann::json ConfigSchema::values() const {
 void ConfigSchema::set_values(const nlohmann::json& saved, std::string_view source) const {
   if (!saved.is_object()) fail_input(fmt::format("{}: the settings are not a table of keys", source));
   nlohmann::json values = saved;
-  for (const Field& f : fields_)
-    if (!f.value_when_not_saved.is_null() && !values.contains(f.key)) values[f.key] = f.value_when_not_saved;
+  for (const Field& f : fields_) {
+    if (f.value_when_not_saved.is_null()) continue;
+    // Saved under the key or under one of its other names: the record has it.
+    bool saved_here = false;
+    for (const auto& item : saved.items()) saved_here = saved_here || find(item.key()) == &f;
+    if (!saved_here) values[f.key] = f.value_when_not_saved;
+  }
   for (const auto& [key, value] : values.items()) {
     const Field* field = find(key);
     const std::string where = fmt::format("{}: {}", source, key);
