@@ -8,19 +8,20 @@ and on compressed bonds too (examples/study/opal_porosity_compressive.toml). Wri
                                             and SD over the seeds; and per reading (pore_fraction
                                             empty) the exponent b of eq. 26, sigma = sigma0
                                             exp(-b eps), fitted per seed over the pore fractions
-                                            both studies hold (eps: the box's pore fraction, as
-                                            porosity_tables.py), mean and SD over the seeds
+                                            both studies hold by porosity_tables.py's fit
+                                            (packlab.fit_porosity_law, sigma0 free; eps: the box's
+                                            pore fraction), mean and SD over the seeds
 
-usage: breakage_reading.py TENSION_OUT COMPRESSIVE_OUT [DATA]   (the two studies' --out folders)"""
+usage: breakage_reading.py TENSION_OUT COMPRESSIVE_OUT [DATA]   (the two studies' --out folders;
+       needs the packlab Python module: PYTHONPATH=python:build/python)"""
 
 import csv
-import math
 import os
 import sys
 
-sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "python"))
-from packlab.reproduction import mean_sd  # noqa: E402
-from packlab.tables import write_table  # noqa: E402
+import packlab
+from packlab.reproduction import mean_sd
+from packlab.tables import write_table
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 
@@ -28,11 +29,6 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 def samples(out):
     with open(os.path.join(out, "tasks.csv")) as f:
         return {(float(t["opal.pore-fraction"]), int(t["seed"])): t for t in csv.DictReader(f) if t["status"] == "done"}
-
-
-def slope(xs, ys):
-    mx, my = sum(xs) / len(xs), sum(ys) / len(ys)
-    return sum((x - mx) * (y - my) for x, y in zip(xs, ys)) / sum((x - mx) ** 2 for x in xs)
 
 
 def main(argv):
@@ -58,10 +54,11 @@ def main(argv):
                          "broken_bonds_mean": f"{b_mean:.6g}", "eq26_b_mean": "", "eq26_b_sd": ""})
         per_seed = []
         for s in seeds:
-            pts = [(float(found[(f, s)]["opal.parameters.pores.pore_fraction_of_region"]),
-                    math.log(float(found[(f, s)]["compress.strength"]))) for f in fractions if (f, s) in common]
-            if len(pts) >= 2:
-                per_seed.append(-slope([p[0] for p in pts], [p[1] for p in pts]))
+            level = [found[(f, s)] for f in fractions if (f, s) in common]
+            if len(level) >= 3:  # sigma0 and b free
+                per_seed.append(packlab.fit_porosity_law(
+                    "exponential", [float(t["opal.parameters.pores.pore_fraction_of_region"]) for t in level],
+                    [float(t["compress.strength"]) for t in level], 0.0).exponent)
         m, sd = mean_sd(per_seed)
         rows.append({"reading": name, "pore_fraction": "", "seeds": len(per_seed), "youngs_modulus_mean": "",
                      "youngs_modulus_sd": "", "strength_mean": "", "strength_sd": "", "broken_bonds_mean": "",
