@@ -1,6 +1,7 @@
 #include <gtest/gtest.h>
 
 #include <fstream>
+#include <limits>
 
 #include "../cli/cli_runner.hpp"
 #include "packlab/core/error.hpp"
@@ -194,6 +195,11 @@ TEST(ConfigSchema, ValuesRoundTripExactlyAndForeignKeysAreRefused) {
   EXPECT_THROW(schema(b).set_values(nlohmann::json{{"no_such_key", 1}}, "checkpoint"), InputError);
   EXPECT_THROW(schema(b).set_values(nlohmann::json{{"plots", "yes"}}, "checkpoint"), InputError);
   EXPECT_THROW(schema(b).set_values(nlohmann::json::array(), "checkpoint"), InputError);
+  EXPECT_THROW(schema(b).set_values(nlohmann::json{{"threads", 99999999999}}, "checkpoint"), InputError);
+  EXPECT_THROW(schema(b).set_values(nlohmann::json{{"seed", std::numeric_limits<std::uint64_t>::max()}}, "checkpoint"),
+               InputError);
+  EXPECT_THROW(schema(b).set_values(nlohmann::json{{"threads", 2.5}}, "checkpoint"), InputError);
+  EXPECT_THROW(schema(b).set_values(nlohmann::json{{"law", nullptr}}, "checkpoint"), InputError);
 }
 
 // A key added after runs were saved: a record without it resumes with the value those runs
@@ -217,4 +223,12 @@ TEST(ConfigSchema, KeysMissingFromASavedRecordTakeTheValueOldRunsRanWith) {
   wrong.text("move_rule", rule, "a rule");
   EXPECT_THROW(wrong.when_not_saved(3), std::logic_error);
   EXPECT_NO_THROW(wrong.when_not_saved("freest"));
+  // The same checks as a saved value's: an integer field refuses 2.5 and a count beyond its type.
+  Settings s;
+  io::ConfigSchema integers("demo");
+  integers.integer("threads", s.threads, "threads");
+  EXPECT_THROW(integers.when_not_saved(2.5), std::logic_error);
+  EXPECT_THROW(integers.when_not_saved(99999999999), std::logic_error);
+  EXPECT_NO_THROW(integers.when_not_saved(4));
+  EXPECT_EQ(s.threads, 0);  // declaring it sets nothing
 }

@@ -163,16 +163,56 @@ ConfigSchema& ConfigSchema::command_only() {
   last().python = false;
   return *this;
 }
+namespace {
+
+// A saved record's value (JSON) as the value a front end reads; InputError "WHERE = value: ..."
+// when it is no value an option takes.
+ConfigSchema::Value value_of_json(const nlohmann::json& value, std::string_view where) {
+  if (value.is_boolean()) return value.get<bool>();
+  if (value.is_number_unsigned() &&
+      value.get<std::uint64_t>() > static_cast<std::uint64_t>(std::numeric_limits<std::int64_t>::max()))
+    fail_input(fmt::format("{} = {}: out of range", where, value.dump()));
+  if (value.is_number_integer()) return value.get<std::int64_t>();
+  if (value.is_number_float()) return value.get<double>();
+  if (value.is_string()) return value.get<std::string>();
+  if (value.is_array() && std::all_of(value.begin(), value.end(), [](const auto& x) { return x.is_number(); }))
+    return value.get<std::vector<double>>();
+  fail_input(fmt::format("{} = {}: not a value this option takes", where, value.dump()));
+}
+
+// ConfigSchema::set() on a copy of the field bound to scratch variables: the same checks
+// (type, integer range) without applying the value.
+void check_value(const ConfigSchema::Field& field, const ConfigSchema::Value& value, std::string_view source) {
+  using Target = ConfigSchema::Target;
+  double d = 0.0;
+  long l = 0;
+  int i = 0;
+  std::uint64_t u = 0;
+  bool b = false;
+  std::string text;
+  std::vector<double> list;
+  ConfigSchema::Field scratch = field;
+  scratch.target = std::visit(
+      Overloaded{[&](double*) -> Target { return &d; }, [&](const std::vector<double*>&) -> Target { return &d; },
+                 [&](long*) -> Target { return &l; }, [&](int*) -> Target { return &i; },
+                 [&](std::uint64_t*) -> Target { return &u; }, [&](bool*) -> Target { return &b; },
+                 [&](std::string*) -> Target { return &text; }, [&](std::vector<double>*) -> Target { return &list; }},
+      field.target);
+  ConfigSchema::set(scratch, value, source);
+}
+
+}  // namespace
+
 ConfigSchema& ConfigSchema::when_not_saved(nlohmann::json value) {
   // A value of the wrong type would surface only when an old checkpoint is resumed, as an
-  // error blaming the saved settings: refuse it where it is declared.
-  const std::string& type = last().type;
-  const bool fits = (type == "number" && value.is_number()) || (type == "integer" && value.is_number_integer()) ||
-                    (type == "boolean" && value.is_boolean()) || (type == "string" && value.is_string()) ||
-                    (type == "numbers" && value.is_array() &&
-                     std::all_of(value.begin(), value.end(), [](const auto& x) { return x.is_number(); }));
-  if (!fits)
-    throw std::logic_error(fmt::format("when_not_saved({}) does not fit {} field {}", value.dump(), type, last().key));
+  // error blaming the saved settings: refuse it where it is declared, by the checks a saved
+  // record's value goes through (set_values).
+  try {
+    check_value(last(), value_of_json(value, last().key), last().key);
+  } catch (const InputError& e) {
+    throw std::logic_error(fmt::format("when_not_saved({}) does not fit {} field {}: {}", value.dump(), last().type,
+                                       last().key, e.what()));
+  }
   last().value_when_not_saved = std::move(value);
   return *this;
 }
@@ -318,25 +358,6 @@ void ConfigSchema::read_file(const std::filesystem::path& path) const {
     fail_input(fmt::format("{}:{}: {}", file, e.source().begin.line, e.description()));
   }
   const std::vector<std::string> all = keys();
-  // set() on a copy of the field bound to scratch variables: checks without applying.
-  const auto check = [](const Field& field, const Value& value, const std::string& source) {
-    double d = 0.0;
-    long l = 0;
-    int i = 0;
-    std::uint64_t u = 0;
-    bool b = false;
-    std::string text;
-    std::vector<double> list;
-    Field scratch = field;
-    scratch.target = std::visit(
-        Overloaded{[&](double*) -> Target { return &d; }, [&](const std::vector<double*>&) -> Target { return &d; },
-                   [&](long*) -> Target { return &l; }, [&](int*) -> Target { return &i; },
-                   [&](std::uint64_t*) -> Target { return &u; }, [&](bool*) -> Target { return &b; },
-                   [&](std::string*) -> Target { return &text; },
-                   [&](std::vector<double>*) -> Target { return &list; }},
-        field.target);
-    set(scratch, value, source);
-  };
   // Walks the tables; every leaf must be a registered key of the right type.
   auto walk = [&](auto&& self, const toml::table& table, const std::string& prefix, bool apply) -> void {
     for (auto&& [k, node] : table) {
@@ -383,7 +404,7 @@ void ConfigSchema::read_file(const std::filesystem::path& path) const {
       if (apply)
         set(*it, value, file + ": " + full);
       else
-        check(*it, value, file + ": " + full);
+        check_value(*it, value, file + ": " + full);
     }
   };
   // Two passes: check everything first, so a bad file changes nothing.
@@ -434,23 +455,7 @@ void ConfigSchema::set_values(const nlohmann::json& saved, std::string_view sour
     const Field* field = find(key);
     const std::string where = fmt::format("{}: {}", source, key);
     if (field == nullptr) fail_input(fmt::format("{}: not an option of packlab {}", where, command_));
-    if (value.is_boolean()) {
-      set(*field, value.get<bool>(), where);
-    } else if (value.is_number_unsigned() &&
-               value.get<std::uint64_t>() > static_cast<std::uint64_t>(std::numeric_limits<std::int64_t>::max())) {
-      fail_input(fmt::format("{} = {}: out of range", where, value.dump()));
-    } else if (value.is_number_integer()) {
-      set(*field, value.get<std::int64_t>(), where);
-    } else if (value.is_number_float()) {
-      set(*field, value.get<double>(), where);
-    } else if (value.is_string()) {
-      set(*field, value.get<std::string>(), where);
-    } else if (value.is_array() &&
-               std::all_of(value.begin(), value.end(), [](const auto& x) { return x.is_number(); })) {
-      set(*field, value.get<std::vector<double>>(), where);
-    } else {
-      fail_input(fmt::format("{} = {}: not a value this option takes", where, value.dump()));
-    }
+    set(*field, value_of_json(value, where), where);
   }
 }
 
