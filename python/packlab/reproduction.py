@@ -92,10 +92,14 @@ def _paper_rows():
                                              "41.1", "", "1.3e6")
     rows["opal.K_E"] = (OPAL, "K_E = E_macro / E_b of the pore-free sample", "eq. 20, Table 1", "3.35", "", "")
     rows["opal.bulk_strength"] = (OPAL, "strength of the pore-free sample [MPa]", "§3, Table 1", "601", "", "")
-    rows["opal.coating20_E"] = (OPAL, "E of the opal with 20 nm titania [GPa], paper's bonds", "§4, Fig. 15", "5.96",
-                                "", "2.5e6")
-    rows["opal.coating20_strength"] = (OPAL, "strength of the opal with 20 nm titania [MPa]", "§4, Fig. 15", "249",
-                                       "", "2.5e6")
+    # The coatings (§4, Fig. 9): the text prints numbers for the 20 nm coating only (Fig. 15's
+    # discussion); Fig. 9 plots the 10 and 34 nm ones, whose values are not in the text ("n/a").
+    for nm, modulus, strength in (("10", "", ""), ("20", "5.96", "249"), ("34", "", "")):
+        source = "§4, Fig. 15" if nm == "20" else "§4, Fig. 9"
+        rows[f"opal.coating{nm}_E"] = (OPAL, f"E of the opal with {nm} nm titania [GPa], paper's bonds", source,
+                                       modulus, "", "2.5e6")
+        rows[f"opal.coating{nm}_strength"] = (OPAL, f"strength of the opal with {nm} nm titania [MPa]", source,
+                                              strength, "", "2.5e6")
     # scrm-bimodal-packs §4 (N = 2000, P = 50-80 realizations, dr = 0.01 a, M = 10 global shakes).
     for c, key, drop in (("0.575", "c0575", "43"), ("0.6", "c060", "21"), ("0.63", "c063", "4")):
         rows[f"scrm.g2a_drop_{key}"] = (SCRM, f"drop of g(2a+) under shaking at c = {c} [%]", "§4.1, Figs. 1-2", drop,
@@ -413,7 +417,13 @@ def opal_structure_values(data):
                              ("; bonds within 1.75 d per particle (the paper's 843,000 bonds / 80,000 particles per "
                               "um^3 = 10.5; bonded neighbours are twice that)" if quantity == "bonds_per_particle" else ""))
     runs = {r["run"]: r for r in read_table(os.path.join(data, "opal_runs.csv"))}
-    if "bulk" in runs:
+    out.update(opal_coating_values(data))
+    out.update(opal_bulk_values(data))
+    if "opal.bulk_strength" in out and "bulk_compressive" in runs:
+        out["opal.bulk_strength"]["note"] += (
+            f"; {float(runs['bulk_compressive']['strength']) * 1e-6:.0f} MPa with eq. 16 on compressed bonds too "
+            f"(examples/opal/run.sh, one {runs['bulk_compressive']['particles']}-particle sample)")
+    if "bulk" in runs and "opal.K_E" not in out:
         bulk = runs["bulk"]
         note = (f"pore-free FBA sample, porosity 0.38, {bulk['particles']} particles, periodic sides, E_b 6.53 GPa "
                 "(examples/opal/run.sh)")
@@ -424,12 +434,72 @@ def opal_structure_values(data):
             float(bulk["strength"]) * 1e-6, 0.0, 1, bulk["particles"],
             note + "; eq. 16 on stretched bonds only (MUSEN)" +
             (f"; {float(compressive['strength']) * 1e-6:.0f} MPa with eq. 16 on compressed bonds too" if compressive else ""))
-    if "coated" in runs:
+    if "coated" in runs and "opal.coating20_E" not in out:
         coated = runs["coated"]
         note = (f"FCC opal at D/d = 9.2 with 3.6 nm of titania (20 nm x 138/762), density "
                 f"{float(coated['density']):.0f} kg/m^3 (paper 668), paper's bonds, one sample (examples/opal/run.sh)")
         out["opal.coating20_E"] = _ours(float(coated["youngs_modulus"]) * 1e-9, 0.0, 1, coated["particles"], note)
         out["opal.coating20_strength"] = _ours(float(coated["strength"]) * 1e-6, 0.0, 1, coated["particles"], note)
+    return out
+
+
+def opal_coating_values(data):
+    """The coating rows from the coated opals at D/d = 9.2-24.5 (examples/opal/coating_tables.py):
+    each coating's E and strength extrapolated to the paper's D/d = 51 as the uncoated opal's
+    size_study rows are; {} when the study's tables are missing."""
+    out = {}
+    samples = read_table(os.path.join(data, "opal_coating_resolution.csv"))
+    for r in read_table(os.path.join(data, "opal_coating_extrapolation.csv")):
+        if r["law"] != "estimate" or r["quantity"] not in ("youngs_modulus_gpa", "strength_mpa"):
+            continue
+        nm = int(float(r["coating_nm"]))
+        used = [s for s in samples if int(float(s["coating_nm"])) == nm and s[r["quantity"]]]
+        counts = sorted(int(s["particles"]) for s in used)
+        ratios = sorted({float(s["pore_to_particle_diameter"]) for s in used})
+        density = [float(s["density_kg_m3"]) for s in used if float(s["pore_to_particle_diameter"]) == ratios[-1]]
+        unit = "GPa" if r["quantity"] == "youngs_modulus_gpa" else "MPa"
+        key = f"opal.coating{nm}_{'E' if r['quantity'] == 'youngs_modulus_gpa' else 'strength'}"
+        out[key] = _ours(
+            float(r["at_target"]), float(r["standard_error"]), int(r["samples"]), f"{counts[0]}-{counts[-1]}",
+            f"FCC opal with {nm} nm of titania scaled with the pores (L_coat = {nm} nm x D / 762 nm), titania bonds of "
+            f"Table 1, paper's silica bonds, static solver, FBA seeds 1-3 at D/d = "
+            + ", ".join(f"{x:g}" for x in ratios)
+            + f"; q = q_inf + c d/D taken at D/d = 51 (SD: fit error and the spread of the laws 1/x^2, 1/sqrt(x), "
+            f"examples/opal/coating_tables.py); at D/d = {ratios[-1]:g}: {float(r['value_at_largest']):.4g} "
+            f"+- {float(r['sd_at_largest']):.2g} {unit}, density {statistics.fmean(density):.0f} kg/m^3 (paper, 20 nm: "
+            "668)")
+    return out
+
+
+def opal_bulk_values(data):
+    """K_E and the bulk strength from the pore-free samples of examples/opal/bulk_study.toml
+    (five packings per size): the largest size that has each quantity; {} without the table."""
+    levels = [r for r in read_table(os.path.join(data, "opal_bulk_study.csv")) if r["seed"] == "mean"]
+    out = {}
+
+    def at_largest(column):
+        rows = [r for r in levels if r[column]]
+        return max(rows, key=lambda r: float(r["side_nm"])) if rows else None
+
+    def others(column, scale, digits):
+        return ", ".join(f"{float(r[column]) * scale:.{digits}g} +- {float(r[column + '_sd']) * scale:.2g} at "
+                         f"{int(float(r['side_nm']))} nm" for r in levels if r[column])
+
+    samples = read_table(os.path.join(data, "opal_bulk_study.csv"))
+
+    def count(side):
+        return sum(1 for r in samples if r["seed"] != "mean" and r["side_nm"] == side)
+
+    for key, column, scale in (("opal.K_E", "bulk_factor", 1.0), ("opal.bulk_strength", "strength_mpa", 1.0)):
+        r = at_largest(column)
+        if r is None:
+            continue
+        side = int(float(r["side_nm"]))
+        out[key] = _ours(float(r[column]) * scale, float(r[column + "_sd"]) * scale, count(r["side_nm"]),
+                         f"{float(r['particles']):.0f}",
+                         f"pore-free FBA silica (porosity 0.38, periodic sides), cube of side {side} nm x 1.4 high, "
+                         f"E_b 6.53 GPa, sigma_max 94.3 MPa (eq. 16 on stretched bonds only), static solver, five "
+                         f"packings (examples/opal/bulk_study.toml); by size: " + others(column, scale, 4))
     return out
 
 

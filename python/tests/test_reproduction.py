@@ -140,6 +140,52 @@ def test_collect_reads_the_opal_structure_rows_and_the_resolution_extrapolation(
     assert rows["opal.coating20_E"]["within"] == "no"  # 5.9 against 5.96 +- 0.005
 
 
+def test_collect_reads_the_coating_and_bulk_studies(tmp_path):
+    # Coated opals with E = 6 - 20 d/D (GPa) exactly at D/d = 10, 15, 20, 25 and the strength
+    # 250 - 500 d/D (MPa) where the run broke bonds (D/d <= 15); pore-free samples whose K_E is
+    # 3.4 / 3.5 / 3.6 by seed at 150 nm and 3.3 +- 0.1 at 300 nm (E only there).
+    study = tmp_path / "coating"
+    study.mkdir()
+    header = ("coating_nm,seed,opal.coating,opal.parameters.pores.ratio_to_mean_particle_diameter,opal.results.particles,"
+              "opal.results.titania_particles,opal.results.bonds,opal.results.porosity,opal.results.density_kg_m3,"
+              "compress.youngs_modulus,compress.strength,compress.strain_at_peak,compress.broken_bonds,compress.seconds,"
+              "status")
+    lines = [header]
+    for x in (10.0, 15.0, 20.0, 25.0):
+        for seed in (1, 2):
+            broke = x <= 15
+            lines.append(f"20,{seed},{20e-9 * x / 51},{x},{int(100 * x) + seed},{int(20 * x)},{int(900 * x)},0.66,668,"
+                         f"{(6 - 20 / x) * 1e9},{(250 - 500 / x) * 1e6 if broke else 1.0},0.06,{100 if broke else 0},1,done")
+    (study / "tasks.csv").write_text("\n".join(lines) + "\n")
+    bulk = tmp_path / "bulk"
+    bulk.mkdir()
+    lines = ["side_nm,seed,compress.particles,compress.bonds,compress.youngs_modulus,compress.strength,"
+             "compress.strain_at_peak,compress.broken_bonds,compress.seconds,status"]
+    for seed, factor in ((1, 3.4), (2, 3.5), (3, 3.6)):
+        lines.append(f"150,{seed},1600,16000,{factor * 6.53e9},{(1000 + 100 * seed) * 1e6},0.05,500,1,done")
+    for seed, factor in ((1, 3.2), (2, 3.3), (3, 3.4)):
+        lines.append(f"300,{seed},13000,130000,{factor * 6.53e9},1.0,0,0,1,done")
+    (bulk / "tasks.csv").write_text("\n".join(lines) + "\n")
+    env = {**os.environ, "PYTHONPATH": os.path.join(ROOT, "python")}
+    for script, out in (("coating_tables.py", study), ("bulk_tables.py", bulk)):
+        subprocess.run([sys.executable, os.path.join(ROOT, "examples", "opal", script), str(out), str(tmp_path)],
+                       check=True, capture_output=True, env=env)
+    rows = {r["key"]: r for r in reproduction.collect(str(tmp_path))}
+    e = rows["opal.coating20_E"]
+    assert float(e["packlab_value"]) == pytest.approx(6 - 20 / 51, rel=1e-4)
+    assert float(e["packlab_sd"]) > 0 and e["realizations"] == 8 and e["particles"] == "1001-2502"
+    assert "at D/d = 25: 5.2 +- 0 GPa" in e["note"]
+    strength = rows["opal.coating20_strength"]
+    assert float(strength["packlab_value"]) == pytest.approx(250 - 500 / 51, rel=1e-4)
+    assert strength["realizations"] == 4  # no strength above D/d = 15
+    assert rows["opal.coating10_E"]["within"] == "n/a"  # no study rows, and no printed paper value
+    assert float(rows["opal.K_E"]["packlab_value"]) == pytest.approx(3.3)  # the largest size
+    assert float(rows["opal.K_E"]["packlab_sd"]) == pytest.approx(0.1)
+    assert rows["opal.K_E"]["realizations"] == 3 and rows["opal.K_E"]["within"] == "yes"  # 3.3 +- 0.1 against 3.35
+    assert float(rows["opal.bulk_strength"]["packlab_value"]) == pytest.approx(1200.0)  # 150 nm: the only strength
+    assert rows["opal.bulk_strength"]["within"] == "no"
+
+
 def test_collect_reads_the_scrm_rows(tmp_path):
     # Two cases per c with known contact values: the drop is 1 - SCRM/LS with the SD of a ratio of
     # independent estimates; the M study is read from the paired ratio of the table.
