@@ -8,7 +8,9 @@ pore spacing), with the paper's bonds and the static solver. Writes
   DATA/opal_porosity_resolution.csv   per scale and pore fraction: D/d, particles, E and strength
                                       (mean and SD over the seeds); then per scale (pore_fraction
                                       empty) the laws fitted per seed over the pore fractions all
-                                      scales hold, as porosity_tables.py fits them
+                                      scales hold and (where a scale has more) over all of its
+                                      pore fractions (column fitted_over), as porosity_tables.py
+                                      fits them
                                       (packlab.fit_porosity_law; eps the box's pore fraction):
                                       eq. 25 E0 and m (E0 free), eq. 24 b (E0 of eq. 25), eq. 26
                                       sigma0 and b (sigma0 free); mean and SD over the seeds; then
@@ -87,7 +89,7 @@ def main(argv):
     if len(scales) < 2 or len(fractions) < 3:
         sys.exit("porosity_resolution: need two scales sharing three pore fractions")
     columns = ["scale", "d_over_d", "pore_fraction", "seeds", "particles", "youngs_modulus_mean", "youngs_modulus_sd",
-               "strength_mean", "strength_sd", "law", "law_mean", "law_sd"]
+               "strength_mean", "strength_sd", "law", "fitted_over", "law_mean", "law_sd"]
     rows = []
 
     def row(**kw):
@@ -97,25 +99,31 @@ def main(argv):
     per_seed_law = {}  # law -> [(D/d, value)]
     for s in scales:
         ratio = next(found[k][0] for k in found if k[0] == s)
-        for f in fractions:
+        own = sorted({k[1] for k in found if k[0] == s})
+        for f in own:
             level = [found[(s, f, seed)][1] for seed in seeds if (s, f, seed) in found]
             e = [float(t["compress.youngs_modulus"]) for t in level]
             st = [float(t["compress.strength"]) for t in level]
             n = [float(t["opal.results.particles"]) for t in level]
-            per_sample.setdefault((f, "youngs_modulus"), []).extend((ratio, v) for v in e)
-            per_sample.setdefault((f, "strength"), []).extend((ratio, v) for v in st)
+            if f in fractions:
+                per_sample.setdefault((f, "youngs_modulus"), []).extend((ratio, v) for v in e)
+                per_sample.setdefault((f, "strength"), []).extend((ratio, v) for v in st)
             row(scale=f"{s:g}", d_over_d=f"{ratio:.4g}", pore_fraction=f"{f:g}", seeds=len(level),
                 particles=f"{mean_sd(n)[0]:.0f}", youngs_modulus_mean=f"{mean_sd(e)[0]:.6g}",
                 youngs_modulus_sd=f"{mean_sd(e)[1]:.3g}", strength_mean=f"{mean_sd(st)[0]:.6g}",
                 strength_sd=f"{mean_sd(st)[1]:.3g}")
-        laws = [seed_laws([found[(s, f, seed)][1] for f in fractions]) for seed in seeds
-                if all((s, f, seed) in found for f in fractions)]
-        for name in laws[0]:
-            values = [law[name] for law in laws]
-            per_seed_law.setdefault(name, []).extend((ratio, v) for v in values)
-            m, sd = mean_sd(values)
-            row(scale=f"{s:g}", d_over_d=f"{ratio:.4g}", seeds=len(values), law=name, law_mean=f"{m:.5g}",
-                law_sd=f"{sd:.3g}")
+        # The laws over the pore fractions every scale holds (the trend below), and over all of
+        # this scale's where it holds more (the paper's six, 0.39-0.63).
+        for over in ([fractions, own] if own != fractions else [fractions]):
+            laws = [seed_laws([found[(s, f, seed)][1] for f in over]) for seed in seeds
+                    if all((s, f, seed) in found for f in over)]
+            for name in laws[0]:
+                values = [law[name] for law in laws]
+                if over is fractions:
+                    per_seed_law.setdefault(name, []).extend((ratio, v) for v in values)
+                m, sd = mean_sd(values)
+                row(scale=f"{s:g}", d_over_d=f"{ratio:.4g}", seeds=len(values), law=name,
+                    fitted_over=f"{over[0]:g}-{over[-1]:g}", law_mean=f"{m:.5g}", law_sd=f"{sd:.3g}")
     target = f"D/d={TARGET:g}"
     for (f, quantity), pairs in sorted(per_sample.items()):
         value, err = extrapolate([p[0] for p in pairs], [p[1] for p in pairs])
@@ -123,9 +131,9 @@ def main(argv):
             **{quantity + "_mean": f"{value:.6g}", quantity + "_sd": f"{err:.3g}"})
     for name, pairs in per_seed_law.items():
         value, err = extrapolate([p[0] for p in pairs], [p[1] for p in pairs])
-        row(scale=target, d_over_d=f"{TARGET:g}", seeds=len(pairs), law=name, law_mean=f"{value:.5g}",
-            law_sd=f"{err:.3g}")
-        print(f"{name}: " + ", ".join(f"D/d {r['d_over_d']}: {r['law_mean']} +- {r['law_sd']}"
+        row(scale=target, d_over_d=f"{TARGET:g}", seeds=len(pairs), law=name,
+            fitted_over=f"{fractions[0]:g}-{fractions[-1]:g}", law_mean=f"{value:.5g}", law_sd=f"{err:.3g}")
+        print(f"{name}: " + ", ".join(f"D/d {r['d_over_d']} over {r['fitted_over']}: {r['law_mean']} +- {r['law_sd']}"
                                       for r in rows if r["law"] == name))
     path = os.path.join(data, "opal_porosity_resolution.csv")
     write_table(path, {k: [r[k] for r in rows] for k in columns},

@@ -77,6 +77,13 @@ def _paper_rows():
     rows["opal.eq24_b"] = (OPAL, "b of E = E0 exp(-b eps) (E0 of eq. 25)", "eq. 24", "2.99", "", "3.4e6")
     rows["opal.eq26_a"] = (OPAL, "sigma0 of strength = sigma0 exp(-b eps) [MPa]", "eq. 26", "576.3", "", "3.4e6")
     rows["opal.eq26_b"] = (OPAL, "b of eq. 26", "eq. 26", "3.85", "", "3.4e6")
+    # The same rows from the porosity samples at D/d = 5.1, 6.7 and 9.2, extrapolated to the
+    # paper's D/d = 51 (examples/opal/porosity_resolution.py).
+    for key, base in (("porosity_E_049", "6.3"), ("porosity_E_063", "3.3"), ("porosity_strength_049", "92.9"),
+                      ("porosity_strength_063", "46.7"), ("eq25_m", "1.92"), ("eq24_b", "2.99"), ("eq26_b", "3.85")):
+        paper, quantity, source, value, scatter, paper_particles = rows[f"opal.{key}"]
+        rows[f"opal.{key}_dd51"] = (paper, quantity + ", extrapolated to D/d = 51", source, value, scatter,
+                                    paper_particles)
     # bpm-inverse-opals §2.1 and §3: the FCC opal of 8.05 um^2 x 2.01 um (80,000 particles and
     # 843,000 bonds per um^3: 1.3 million particles) with the calibrated bonds (6.53 GPa, 94.3
     # MPa), the pore-free bulk (Table 1, eq. 20) and the 20 nm titania coating (§4, Fig. 15).
@@ -380,6 +387,43 @@ def opal_values(data):
     return out
 
 
+def opal_porosity_resolution_values(data):
+    """The `_dd51` rows: the porosity samples at three resolutions (opal_porosity_resolution.csv,
+    examples/opal/porosity_resolution.py) extrapolated to the paper's D/d = 51 by q = q_inf +
+    c d/D (the uncertainty adds half the spread of the laws 1/x^2, 1/sqrt(x))."""
+    out = {}
+    rows = read_table(os.path.join(data, "opal_porosity_resolution.csv"))
+    measured = [r for r in rows if r["scale"] and not r["scale"].startswith("D/d") and r["pore_fraction"]]
+    if not measured:
+        return out
+    ratios = sorted({float(r["d_over_d"]) for r in measured})
+    counts = sorted(float(r["particles"]) for r in measured)
+    span = f"{counts[0]:.0f}-{counts[-1]:.0f} (means per level)"
+    what = (f"the random-pore samples at D/d = {', '.join(f'{x:g}' for x in ratios)} (the paper's sample scaled by "
+            "150 s/762, s = 0.6, 0.75, 1; nearly the same pores in units of the spacing), paper's bonds, static solver, seeds "
+            "1-3; q = q_inf + c d/D taken at D/d = 51, SD: fit error and the spread of the laws 1/x^2, 1/sqrt(x)")
+    for r in rows:
+        if not r["scale"].startswith("D/d"):
+            continue
+        if r["pore_fraction"]:
+            level = f"{round(float(r['pore_fraction']) * 100):03d}"
+            for column, name, scale in (("youngs_modulus", "E", 1e-9), ("strength", "strength", 1e-6)):
+                if r[column + "_mean"]:
+                    at = [float(m[column + "_mean"]) * scale for m in measured
+                          if m["pore_fraction"] == r["pore_fraction"]]
+                    out[f"opal.porosity_{name}_{level}_dd51"] = _ours(
+                        float(r[column + "_mean"]) * scale, float(r[column + "_sd"]) * scale, int(r["seeds"]), span,
+                        f"{what} (values there: {', '.join(f'{v:.3g}' for v in at)})")
+        elif r["law"] in ("eq25_m", "eq24_b", "eq26_b"):
+            at = [float(m["law_mean"]) for m in rows if m["law"] == r["law"] and m["fitted_over"] == r["fitted_over"]
+                  and not m["scale"].startswith("D/d")]
+            out[f"opal.{r['law']}_dd51"] = _ours(
+                float(r["law_mean"]), float(r["law_sd"]), int(r["seeds"]), span,
+                f"{what}; fitted per seed over pore fractions {r['fitted_over']} at each D/d "
+                f"(values there: {', '.join(f'{v:.3g}' for v in at)})")
+    return out
+
+
 def opal_structure_values(data):
     """The opal paper's rows of the FCC opal, the bulk and the coating (§2.1, §3, §4) from the
     studies of docs/opal.md: the resolution study (opal_resolution.csv, D/d = 9.2-24.5, three
@@ -608,6 +652,7 @@ def collect(data):
     ours.update(vem_values(data))
     ours.update(doh_values(data))
     ours.update(opal_values(data))
+    ours.update(opal_porosity_resolution_values(data))
     ours.update(opal_structure_values(data))
     ours.update(scrm_values(data))
     rows = []

@@ -2,6 +2,7 @@
 rendering into the page's markers (docs/reproduction.md)."""
 
 import csv
+import math
 import os
 import subprocess
 import sys
@@ -138,6 +139,40 @@ def test_collect_reads_the_opal_structure_rows_and_the_resolution_extrapolation(
     assert "300 MPa with eq. 16 on compressed bonds too" in rows["opal.bulk_strength"]["note"]
     assert float(rows["opal.coating20_E"]["packlab_value"]) == pytest.approx(5.9)
     assert rows["opal.coating20_E"]["within"] == "no"  # 5.9 against 5.96 +- 0.005
+
+
+def test_collect_extrapolates_the_porosity_samples_over_their_resolution(tmp_path):
+    # E = (30 - 50 d/D) (1 - eps)^2.5 GPa and strength = 9 exp(-8 eps) (1 - d/D) GPa exactly, at
+    # D/d = 5, 7 (study with a scale label) and 9.2 (the scale-1 study), two seeds, four pore
+    # fractions: the laws' exponents are the same at every D/d and the values at D/d = 51 follow.
+    def write(folder, scaled):
+        folder.mkdir()
+        lines = ["scale,opal.pore-fraction,seed,opal.parameters.pores.pore_fraction_of_region,"
+                 "opal.parameters.pores.ratio_to_mean_particle_diameter,opal.results.particles,"
+                 "compress.youngs_modulus,compress.strength,status"]
+        for scale, x in (((0.6, 5.0), (0.75, 7.0)) if scaled else ((1, 138 / 15),)):
+            for eps in (0.49, 0.54, 0.59, 0.63):
+                for seed in (1, 2):
+                    e = (30 - 50 / x) * (1 - eps) ** 2.5 * 1e9
+                    strength = 9e9 * math.exp(-8 * eps) * (1 - 1 / x)
+                    lines.append(f"{scale},{eps},{seed},{eps},{x},{int(1000 * x)},{e},{strength},done")
+        (folder / "tasks.csv").write_text("\n".join(lines) + "\n")
+
+    write(tmp_path / "paper", False)
+    write(tmp_path / "resolution", True)
+    subprocess.run([sys.executable, os.path.join(ROOT, "examples", "opal", "porosity_resolution.py"),
+                    str(tmp_path / "paper"), str(tmp_path / "resolution"), str(tmp_path)], check=True,
+                   capture_output=True, env={**os.environ, "PYTHONPATH": os.path.join(ROOT, "python") + os.pathsep +
+                                             os.environ.get("PYTHONPATH", "")})
+    rows = {r["key"]: r for r in reproduction.collect(str(tmp_path))}
+    assert float(rows["opal.porosity_E_049_dd51"]["packlab_value"]) == pytest.approx((30 - 50 / 51) * 0.51**2.5,
+                                                                                      rel=1e-3)
+    assert rows["opal.porosity_E_049_dd51"]["realizations"] == 6
+    assert float(rows["opal.porosity_strength_063_dd51"]["packlab_value"]) == pytest.approx(
+        9e3 * math.exp(-8 * 0.63) * (1 - 1 / 51), rel=1e-3)
+    assert float(rows["opal.eq25_m_dd51"]["packlab_value"]) == pytest.approx(2.5, rel=1e-3)
+    assert float(rows["opal.eq26_b_dd51"]["packlab_value"]) == pytest.approx(8.0, rel=1e-3)
+    assert rows["opal.eq26_b_dd51"]["within"] == "no"  # 8 against 3.85
 
 
 def test_collect_reads_the_coating_and_bulk_studies(tmp_path):
