@@ -2,8 +2,8 @@
 """The porosity study at three resolutions (docs/reproduction.md, `opal.porosity_*`,
 `opal.eq24_b`, `opal.eq25_*`, `opal.eq26_*`): the samples of examples/study/opal_porosity_paper.toml
 (scale 1, pores 9.2 particle diameters across) and of examples/study/opal_porosity_resolution.toml
-(the same samples scaled by 0.6 and 0.75: D/d = 5.12 and 6.65, the same pores in units of the
-pore spacing), with the paper's bonds and the static solver. Writes
+(the samples scaled by 0.6 and 0.75: D/d = 5.12 and 6.65, the same pore count and box in
+units of the pore spacing), with the paper's bonds and the static solver. Writes
 
   DATA/opal_porosity_resolution.csv   per scale and pore fraction: D/d, particles, E and strength
                                       (mean and SD over the seeds); then per scale (pore_fraction

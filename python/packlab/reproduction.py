@@ -400,7 +400,7 @@ def opal_porosity_resolution_values(data):
     counts = sorted(float(r["particles"]) for r in measured)
     span = f"{counts[0]:.0f}-{counts[-1]:.0f} (means per level)"
     what = (f"the random-pore samples at D/d = {', '.join(f'{x:g}' for x in ratios)} (the paper's sample scaled by "
-            "150 s/762, s = 0.6, 0.75, 1; nearly the same pores in units of the spacing), paper's bonds, static solver, seeds "
+            "150 s/762, s = 0.6, 0.75, 1: the same pore count and box in units of the pore spacing), paper's bonds, static solver, seeds "
             "1-3; q = q_inf + c d/D taken at D/d = 51, SD: fit error and the spread of the laws 1/x^2, 1/sqrt(x)")
     for r in rows:
         if not r["scale"].startswith("D/d"):
