@@ -490,28 +490,37 @@ def opal_structure_values(data):
 def opal_coating_values(data):
     """The coating rows from the coated opals at D/d = 9.2-24.5 (examples/opal/coating_tables.py):
     each coating's E and strength extrapolated to the paper's D/d = 51 as the uncoated opal's
-    size_study rows are; {} when the study's tables are missing."""
+    size_study rows are; where a quantity was measured at one D/d only, its mean and SD there.
+    {} when the study's tables are missing."""
     out = {}
     samples = read_table(os.path.join(data, "opal_coating_resolution.csv"))
-    for r in read_table(os.path.join(data, "opal_coating_extrapolation.csv")):
-        if r["law"] != "estimate" or r["quantity"] not in ("youngs_modulus_gpa", "strength_mpa"):
-            continue
-        nm = int(float(r["coating_nm"]))
-        used = [s for s in samples if int(float(s["coating_nm"])) == nm and s[r["quantity"]]]
-        counts = sorted(int(s["particles"]) for s in used)
-        ratios = sorted({float(s["pore_to_particle_diameter"]) for s in used})
-        density = [float(s["density_kg_m3"]) for s in used if float(s["pore_to_particle_diameter"]) == ratios[-1]]
-        unit = "GPa" if r["quantity"] == "youngs_modulus_gpa" else "MPa"
-        key = f"opal.coating{nm}_{'E' if r['quantity'] == 'youngs_modulus_gpa' else 'strength'}"
-        out[key] = _ours(
-            float(r["at_target"]), float(r["standard_error"]), int(r["samples"]), f"{counts[0]}-{counts[-1]}",
-            f"FCC opal with {nm} nm of titania scaled with the pores (L_coat = {nm} nm x D / 762 nm), titania bonds of "
-            f"Table 1, paper's silica bonds, static solver, FBA seeds 1-3 at D/d = "
-            + ", ".join(f"{x:g}" for x in ratios)
-            + f"; q = q_inf + c d/D taken at D/d = 51 (SD: fit error and the spread of the laws 1/x^2, 1/sqrt(x), "
-            f"examples/opal/coating_tables.py); at D/d = {ratios[-1]:g}: {float(r['value_at_largest']):.4g} "
-            f"+- {float(r['sd_at_largest']):.2g} {unit}, density {statistics.fmean(density):.0f} kg/m^3 (paper, 20 nm: "
-            "668)")
+    estimates = {(int(float(r["coating_nm"])), r["quantity"]): r
+                 for r in read_table(os.path.join(data, "opal_coating_extrapolation.csv")) if r["law"] == "estimate"}
+    for nm in sorted({int(float(s["coating_nm"])) for s in samples}):
+        for quantity, name, unit in (("youngs_modulus_gpa", "E", "GPa"), ("strength_mpa", "strength", "MPa")):
+            used = [s for s in samples if int(float(s["coating_nm"])) == nm and s[quantity]]
+            if not used:
+                continue
+            counts = sorted(int(s["particles"]) for s in used)
+            ratios = sorted({float(s["pore_to_particle_diameter"]) for s in used})
+            top = [s for s in used if float(s["pore_to_particle_diameter"]) == ratios[-1]]
+            top_mean, top_sd = mean_sd([float(s[quantity]) for s in top])
+            density = statistics.fmean(float(s["density_kg_m3"]) for s in top)
+            what = (f"FCC opal with {nm} nm of titania scaled with the pores (L_coat = {nm} nm x D / 762 nm), titania "
+                    f"bonds of Table 1, paper's silica bonds, static solver, FBA seeds 1-3 at D/d = "
+                    + ", ".join(f"{x:g}" for x in ratios))
+            r = estimates.get((nm, quantity))
+            if r is not None:
+                out[f"opal.coating{nm}_{name}"] = _ours(
+                    float(r["at_target"]), float(r["standard_error"]), int(r["samples"]), f"{counts[0]}-{counts[-1]}",
+                    what + "; q = q_inf + c d/D taken at D/d = 51 (SD: fit error and the spread of the laws 1/x^2, "
+                    f"1/sqrt(x), examples/opal/coating_tables.py); at D/d = {ratios[-1]:g}: {top_mean:.4g} +- "
+                    f"{top_sd:.2g} {unit} ({len(top)} samples), density {density:.0f} kg/m^3 (paper, 20 nm: 668)")
+            else:
+                out[f"opal.coating{nm}_{name}"] = _ours(
+                    top_mean, top_sd, len(top), f"{counts[0]}-{counts[-1]}",
+                    what + f"; measured at this one D/d, not extrapolated (the runs at larger D/d did not finish), "
+                    f"density {density:.0f} kg/m^3 (paper, 20 nm: 668)")
     return out
 
 

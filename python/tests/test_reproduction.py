@@ -191,6 +191,8 @@ def test_collect_reads_the_coating_and_bulk_studies(tmp_path):
             broke = x <= 15
             lines.append(f"20,{seed},{20e-9 * x / 51},{x},{int(100 * x) + seed},{int(20 * x)},{int(900 * x)},0.66,668,"
                          f"{(6 - 20 / x) * 1e9},{(250 - 500 / x) * 1e6 if broke else 1.0},0.06,{100 if broke else 0},1,done")
+    for seed, modulus in ((1, 9.0), (2, 10.0)):  # 34 nm: one D/d only, so no extrapolation
+        lines.append(f"34,{seed},{6e-9},10,1000,300,9000,0.6,700,{modulus * 1e9},5e8,0.06,100,1,done")
     (study / "tasks.csv").write_text("\n".join(lines) + "\n")
     bulk = tmp_path / "bulk"
     bulk.mkdir()
@@ -214,6 +216,8 @@ def test_collect_reads_the_coating_and_bulk_studies(tmp_path):
     assert float(strength["packlab_value"]) == pytest.approx(250 - 500 / 51, rel=1e-4)
     assert strength["realizations"] == 4  # no strength above D/d = 15
     assert rows["opal.coating10_E"]["within"] == "n/a"  # no study rows, and no printed paper value
+    assert float(rows["opal.coating34_E"]["packlab_value"]) == pytest.approx(9.5)  # the mean at its one D/d
+    assert "not extrapolated" in rows["opal.coating34_E"]["note"] and rows["opal.coating34_E"]["within"] == "n/a"
     assert float(rows["opal.K_E"]["packlab_value"]) == pytest.approx(3.3)  # the largest size
     assert float(rows["opal.K_E"]["packlab_sd"]) == pytest.approx(0.1)
     assert rows["opal.K_E"]["realizations"] == 3 and rows["opal.K_E"]["within"] == "yes"  # 3.3 +- 0.1 against 3.35
