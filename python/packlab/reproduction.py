@@ -550,7 +550,7 @@ def opal_bulk_values(data):
         side = int(float(r["side_nm"]))
         out[key] = _ours(float(r[column]) * scale, float(r[column + "_sd"]) * scale, count(r["side_nm"]),
                          f"{float(r['particles']):.0f}",
-                         f"pore-free FBA silica (porosity 0.38, periodic sides), cube of side {side} nm x 1.4 high, "
+                         f"pore-free FBA silica (porosity 0.38, periodic sides), {side} x {side} x {1.4 * side:.0f} nm, "
                          f"E_b 6.53 GPa, sigma_max 94.3 MPa (eq. 16 on stretched bonds only), static solver, five "
                          f"packings (examples/opal/bulk_study.toml); by size: " + others(column, scale, 4))
     return out
