@@ -14,7 +14,8 @@ units of the pore spacing), with the paper's bonds and the static solver. Writes
                                       (packlab.fit_porosity_law; eps the box's pore fraction):
                                       eq. 25 E0 and m (E0 free), eq. 24 b (E0 of eq. 25), eq. 26
                                       sigma0 and b (sigma0 free); mean and SD over the seeds; then
-                                      rows scale = "D/d=51": each quantity's trend over the
+                                      rows scale = "D/d=51" (seeds: the samples behind it; _sd:
+                                      the extrapolation's uncertainty): each quantity's trend over the
                                       resolution taken at the paper's D/d = 51 as
                                       resolution_extrapolation.py does (q = q_inf + c d/D over every
                                       sample or per-seed fit; uncertainty: the fit's standard error
@@ -69,8 +70,11 @@ def seed_laws(level):
 
 
 def extrapolate(x, y):
-    """The value at D/d = 51 of q = q_inf + c d/D and its uncertainty (resolution_extrapolation.py)."""
+    """The value at D/d = 51 of q = q_inf + c d/D and its uncertainty (resolution_extrapolation.py);
+    None with fewer than three points or two resolutions."""
     x, y = np.array(x), np.array(y)
+    if len(y) < 3 or len(set(x)) < 2:
+        return None
     fits = {law: fit_law(x, y, law) for law in LAWS}
     values = [f[2] for f in fits.values()]
     first = fits["1/x"]
@@ -83,6 +87,8 @@ def main(argv):
     data = argv[3] if len(argv) > 3 else os.path.join(HERE, "..", "..", "docs", "data")
     found = samples(argv[1], False) | samples(argv[2], True)
     scales = sorted({k[0] for k in found})
+    if len(scales) < 2:
+        sys.exit("porosity_resolution: need finished samples at two scales")
     # The pore fractions and seeds every scale holds: the laws are fitted over the same levels.
     fractions = sorted(set.intersection(*({k[1] for k in found if k[0] == s} for s in scales)))
     seeds = sorted(set.intersection(*({k[2] for k in found if k[0] == s} for s in scales)))
@@ -117,6 +123,8 @@ def main(argv):
         for over in ([fractions, own] if own != fractions else [fractions]):
             laws = [seed_laws([found[(s, f, seed)][1] for f in over]) for seed in seeds
                     if all((s, f, seed) in found for f in over)]
+            if not laws:  # no seed holds every pore fraction of the range yet
+                continue
             for name in laws[0]:
                 values = [law[name] for law in laws]
                 if over is fractions:
@@ -126,10 +134,14 @@ def main(argv):
                     fitted_over=f"{over[0]:g}-{over[-1]:g}", law_mean=f"{m:.5g}", law_sd=f"{sd:.3g}")
     target = f"D/d={TARGET:g}"
     for (f, quantity), pairs in sorted(per_sample.items()):
+        if extrapolate([p[0] for p in pairs], [p[1] for p in pairs]) is None:
+            continue
         value, err = extrapolate([p[0] for p in pairs], [p[1] for p in pairs])
         row(scale=target, d_over_d=f"{TARGET:g}", pore_fraction=f"{f:g}", seeds=len(pairs),
             **{quantity + "_mean": f"{value:.6g}", quantity + "_sd": f"{err:.3g}"})
     for name, pairs in per_seed_law.items():
+        if extrapolate([p[0] for p in pairs], [p[1] for p in pairs]) is None:
+            continue
         value, err = extrapolate([p[0] for p in pairs], [p[1] for p in pairs])
         row(scale=target, d_over_d=f"{TARGET:g}", seeds=len(pairs), law=name,
             fitted_over=f"{fractions[0]:g}-{fractions[-1]:g}", law_mean=f"{value:.5g}", law_sd=f"{err:.3g}")

@@ -519,7 +519,7 @@ def opal_coating_values(data):
             else:
                 out[f"opal.coating{nm}_{name}"] = _ours(
                     top_mean, top_sd, len(top), f"{counts[0]}-{counts[-1]}",
-                    what + f"; measured at this one D/d, not extrapolated (the runs at larger D/d did not finish), "
+                    what + f"; not extrapolated (too few D/d with this quantity), the mean at D/d = {ratios[-1]:g}, "
                     f"density {density:.0f} kg/m^3 (paper, 20 nm: 668)")
     return out
 
@@ -540,15 +540,15 @@ def opal_bulk_values(data):
 
     samples = read_table(os.path.join(data, "opal_bulk_study.csv"))
 
-    def count(side):
-        return sum(1 for r in samples if r["seed"] != "mean" and r["side_nm"] == side)
+    def count(side, column):
+        return sum(1 for r in samples if r["seed"] != "mean" and r["side_nm"] == side and r[column])
 
     for key, column, scale in (("opal.K_E", "bulk_factor", 1.0), ("opal.bulk_strength", "strength_mpa", 1.0)):
         r = at_largest(column)
         if r is None:
             continue
         side = int(float(r["side_nm"]))
-        out[key] = _ours(float(r[column]) * scale, float(r[column + "_sd"]) * scale, count(r["side_nm"]),
+        out[key] = _ours(float(r[column]) * scale, float(r[column + "_sd"]) * scale, count(r["side_nm"], column),
                          f"{float(r['particles']):.0f}",
                          f"pore-free FBA silica (porosity 0.38, periodic sides), {side} x {side} x {1.4 * side:.0f} nm, "
                          f"E_b 6.53 GPa, sigma_max 94.3 MPa (eq. 16 on stretched bonds only), static solver, five "
