@@ -15,20 +15,19 @@ and on compressed bonds too (examples/study/opal_porosity_compressive.toml). Wri
 usage: breakage_reading.py TENSION_OUT COMPRESSIVE_OUT [DATA]   (the two studies' --out folders;
        needs the packlab Python module: PYTHONPATH=python:build/python)"""
 
-import csv
 import os
 import sys
 
 import packlab
 from packlab.reproduction import mean_sd
+from packlab.studies import finished_tasks
 from packlab.tables import write_table
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 
 
 def samples(out):
-    with open(os.path.join(out, "tasks.csv")) as f:
-        return {(float(t["opal.pore-fraction"]), int(t["seed"])): t for t in csv.DictReader(f) if t["status"] == "done"}
+    return {(float(t["opal.pore-fraction"]), int(t["seed"])): t for t in finished_tasks(out)}
 
 
 def main(argv):

@@ -8,11 +8,11 @@ Table 1, eq. 20) from the study's tasks.csv:
 
 usage: bulk_tables.py STUDY_OUT [DATA]   (DATA defaults to docs/data of this checkout)"""
 
-import csv
 import os
 import sys
 
 from packlab.reproduction import mean_sd
+from packlab.studies import finished_tasks
 from packlab.tables import write_table
 
 HERE = os.path.dirname(os.path.abspath(__file__))
@@ -25,8 +25,7 @@ def main(argv):
     if len(argv) < 2:
         sys.exit(__doc__)
     data = argv[2] if len(argv) > 2 else os.path.join(HERE, "..", "..", "docs", "data")
-    with open(os.path.join(argv[1], "tasks.csv")) as f:
-        tasks = [t for t in csv.DictReader(f) if t["status"] == "done"]
+    tasks = finished_tasks(argv[1])
     if not tasks:
         sys.exit(f"bulk_tables: no finished task in {argv[1]}/tasks.csv")
     rows = []

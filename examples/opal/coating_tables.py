@@ -16,13 +16,13 @@ pores, D/d = 9.2-24.5, FBA seeds 1-3, static solver) from the study's tasks.csv:
 
 usage: coating_tables.py STUDY_OUT [DATA]   (DATA defaults to docs/data of this checkout)"""
 
-import csv
 import math
 import os
 import sys
 
 import numpy as np
 
+from packlab.studies import finished_tasks
 from packlab.tables import write_table
 
 HERE = os.path.dirname(os.path.abspath(__file__))
@@ -40,8 +40,7 @@ def main(argv):
         sys.exit(__doc__)
     out = argv[1]
     data = argv[2] if len(argv) > 2 else os.path.join(HERE, "..", "..", "docs", "data")
-    with open(os.path.join(out, "tasks.csv")) as f:
-        tasks = [t for t in csv.DictReader(f) if t["status"] == "done"]
+    tasks = finished_tasks(out)
     if not tasks:
         sys.exit(f"coating_tables: no finished task in {out}/tasks.csv")
     samples = []

@@ -16,13 +16,13 @@ pores wholly inside the region above the substrate). Writes
 usage: pore_boundary.py RESOLUTION_OUT WALLS_OUT [DATA]   (the two studies' --out folders;
        needs the packlab Python module: PYTHONPATH=python:build/python)"""
 
-import csv
 import json
 import os
 import sys
 
 import packlab
 from packlab.reproduction import mean_sd
+from packlab.studies import finished_tasks
 from packlab.tables import write_table
 
 HERE = os.path.dirname(os.path.abspath(__file__))
@@ -30,9 +30,8 @@ SCALE = 0.6  # opal_porosity_walls.toml's samples: opal_porosity_resolution.toml
 
 
 def samples(out, scale):
-    with open(os.path.join(out, "tasks.csv")) as f:
-        return {(float(t["opal.pore-fraction"]), int(t["seed"])): t for t in csv.DictReader(f)
-                if t["status"] == "done" and (scale is None or float(t["scale"]) == scale)}
+    return {(float(t["opal.pore-fraction"]), int(t["seed"])): t for t in finished_tasks(out)
+            if scale is None or float(t["scale"]) == scale}
 
 
 def pores_at_the_ends(out, task):

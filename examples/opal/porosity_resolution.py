@@ -24,7 +24,6 @@ units of the pore spacing), with the paper's bonds and the static solver. Writes
 usage: porosity_resolution.py SCALE1_OUT RESOLUTION_OUT [DATA]   (the two studies' --out folders;
        needs the packlab Python module: PYTHONPATH=python:build/python)"""
 
-import csv
 import math
 import os
 import sys
@@ -33,6 +32,7 @@ import numpy as np
 
 import packlab
 from packlab.reproduction import mean_sd
+from packlab.studies import finished_tasks
 from packlab.tables import write_table
 
 HERE = os.path.dirname(os.path.abspath(__file__))
@@ -46,14 +46,11 @@ SCALE1_PORE_DIAMETER = 138e-9  # opal_porosity_paper.toml
 def samples(out, scaled):
     """{(scale, pore fraction, seed): (D/d, task)} of a study's finished tasks."""
     found = {}
-    with open(os.path.join(out, "tasks.csv")) as f:
-        for t in csv.DictReader(f):
-            if t["status"] != "done":
-                continue
-            scale = float(t["scale"]) if scaled else 1.0
-            ratio = (float(t["opal.parameters.pores.ratio_to_mean_particle_diameter"]) if scaled
-                     else SCALE1_PORE_DIAMETER / PARTICLE_DIAMETER)
-            found[(scale, float(t["opal.pore-fraction"]), int(t["seed"]))] = (ratio, t)
+    for t in finished_tasks(out):
+        scale = float(t["scale"]) if scaled else 1.0
+        ratio = (float(t["opal.parameters.pores.ratio_to_mean_particle_diameter"]) if scaled
+                 else SCALE1_PORE_DIAMETER / PARTICLE_DIAMETER)
+        found[(scale, float(t["opal.pore-fraction"]), int(t["seed"]))] = (ratio, t)
     return found
 
 

@@ -22,6 +22,7 @@ import sys
 
 import packlab
 from packlab.reproduction import mean_sd
+from packlab.studies import finished_tasks
 from packlab.tables import write_table
 
 HERE = os.path.dirname(os.path.abspath(__file__))
@@ -51,8 +52,7 @@ def main(argv):
         sys.exit(__doc__)
     out = argv[1]
     data = argv[2] if len(argv) > 2 else os.path.join(HERE, "..", "..", "docs", "data")
-    with open(os.path.join(out, "tasks.csv")) as f:
-        tasks = [r for r in csv.DictReader(f) if r["status"] == "done"]
+    tasks = finished_tasks(out)
     if not tasks:
         sys.exit(f"porosity_tables: no finished task in {out}/tasks.csv")
     samples = []

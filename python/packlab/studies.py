@@ -595,6 +595,13 @@ def aggregate(spec, units, tasks, out, results=None):
 # ---------------------------------------------------------------- entry points
 
 
+def finished_tasks(out):
+    """The rows of ``out``/tasks.csv (a study folder) whose status is done, as dicts of strings:
+    what the scripts that tabulate a study read."""
+    with open(os.path.join(out, "tasks.csv"), newline="") as f:
+        return [row for row in csv.DictReader(f) if row["status"] == "done"]
+
+
 def _find_packlab(packlab):
     packlab = packlab or os.environ.get("PACKLAB_BINARY") or shutil.which("packlab")
     _require(packlab and os.path.exists(packlab),
