@@ -131,15 +131,17 @@ def main(argv):
                     fitted_over=f"{over[0]:g}-{over[-1]:g}", law_mean=f"{m:.5g}", law_sd=f"{sd:.3g}")
     target = f"D/d={TARGET:g}"
     for (f, quantity), pairs in sorted(per_sample.items()):
-        if extrapolate([p[0] for p in pairs], [p[1] for p in pairs]) is None:
+        at_target = extrapolate([p[0] for p in pairs], [p[1] for p in pairs])
+        if at_target is None:
             continue
-        value, err = extrapolate([p[0] for p in pairs], [p[1] for p in pairs])
+        value, err = at_target
         row(scale=target, d_over_d=f"{TARGET:g}", pore_fraction=f"{f:g}", seeds=len(pairs),
             **{quantity + "_mean": f"{value:.6g}", quantity + "_sd": f"{err:.3g}"})
     for name, pairs in per_seed_law.items():
-        if extrapolate([p[0] for p in pairs], [p[1] for p in pairs]) is None:
+        at_target = extrapolate([p[0] for p in pairs], [p[1] for p in pairs])
+        if at_target is None:
             continue
-        value, err = extrapolate([p[0] for p in pairs], [p[1] for p in pairs])
+        value, err = at_target
         row(scale=target, d_over_d=f"{TARGET:g}", seeds=len(pairs), law=name,
             fitted_over=f"{fractions[0]:g}-{fractions[-1]:g}", law_mean=f"{value:.5g}", law_sd=f"{err:.3g}")
         print(f"{name}: " + ", ".join(f"D/d {r['d_over_d']} over {r['fitted_over']}: {r['law_mean']} +- {r['law_sd']}"
