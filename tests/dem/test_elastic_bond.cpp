@@ -5,9 +5,9 @@
 #include <limits>
 #include <numbers>
 
+#include "../test_packings.hpp"
 #include "packlab/dem/bond/elastic_bond.hpp"
 #include "packlab/dem/engine.hpp"
-#include "../test_packings.hpp"
 
 using namespace packlab;
 using namespace packlab::dem;
@@ -15,9 +15,9 @@ using namespace packlab::dem;
 namespace {
 
 constexpr double inf = std::numeric_limits<double>::infinity();
-constexpr double r = 0.1e-6;                 // particle radius [m]
-constexpr double l0 = 2 * r;                 // bond length at rest (touching)
-constexpr double E = 70e9, nu = 0.2;         // silica-like bond [Pa]
+constexpr double r = 0.1e-6;          // particle radius [m]
+constexpr double l0 = 2 * r;          // bond length at rest (touching)
+constexpr double E = 70e9, nu = 0.2;  // silica-like bond [Pa]
 const double area = std::numbers::pi * r * r;
 const double inertia = 0.25 * std::numbers::pi * r * r * r * r;
 const double shear_modulus = E / (2 * (1 + nu));
@@ -56,7 +56,7 @@ TEST(ElasticBond, BendingAndTorsionMomentsGrowWithTheRelativeRotation) {
   BondForce f{};
   for (int k = 0; k < steps; ++k) f = ElasticBond::evaluate(g, params(), s);
   const double angle_x = 3e6 * g.dt * steps, angle_y = 2e6 * g.dt * steps;
-  EXPECT_NEAR(s.torsion.x, -shear_modulus * 2 * inertia / l0 * angle_x, 1e-9 * std::abs(s.torsion.x));
+  EXPECT_NEAR(s.torsion, -shear_modulus * 2 * inertia / l0 * angle_x, 1e-9 * std::abs(s.torsion));
   EXPECT_NEAR(s.bending.y, -E * inertia / l0 * angle_y, 1e-9 * std::abs(s.bending.y));
   // Equal and opposite moments on the two particles.
   EXPECT_NEAR(f.torque_j.x, -f.torque_i.x, 1e-12 * std::abs(f.torque_j.x));

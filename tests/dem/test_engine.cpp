@@ -296,6 +296,37 @@ TEST(Engine, RejectsBadParameters) {
   EXPECT_THROW(Engine(p, config), InputError);
 }
 
+// The engine keeps a bond's image in 16-bit and its material in unsigned 16-bit integers
+// (issue #14: bytes per bond): a bond beyond them is refused with its index, value and range,
+// not wrapped; the largest image that fits is kept exactly.
+TEST(Engine, RefusesABondWhoseImageOrMaterialDoesNotFitItsStoredType) {
+  Packing p = dense_random(10, 0.1, 1);
+  EngineConfig config;
+  config.types = {Material{100.0, 10.0, 0.0, 1000.0, 0.7}};
+  config.threads = 1;
+  config.bond_materials = BondMaterialList<ContactBond>{{800.0, 80.0, 1e9, 1e9}};
+  auto message = [&](const Packing& q) {
+    try {
+      Engine engine(q, config);
+    } catch (const InputError& e) {
+      return std::string(e.what());
+    }
+    return std::string();
+  };
+  Packing far = p;
+  far.bonds.add(0, 1, {32767, 0, -32767}, 0, 1.0);
+  EXPECT_EQ(message(far), "");
+  EXPECT_EQ(Engine(far, config).packing().bonds.image[0], (std::array<int, 3>{32767, 0, -32767}));
+  Packing too_far = p;
+  too_far.bonds.add(0, 1, {0, 32768, 0}, 0, 1.0);
+  EXPECT_NE(message(too_far).find("bond 0 has image 0 32768 0"), std::string::npos) << message(too_far);
+  EXPECT_NE(message(too_far).find("[-32767, 32767]"), std::string::npos);
+  Packing material = p;
+  material.bonds.add(0, 1, {0, 0, 0}, 70000, 1.0);
+  EXPECT_NE(message(material).find("bond 0 has material 70000: must be in [0, 65535]"), std::string::npos)
+      << message(material);
+}
+
 TEST(Engine, ARunThatTurnsNonFiniteStopsAtTheNextMeasuredStepNamingAParticle) {
   Packing p = dense_random(250, 0.66, 13);
   EngineConfig config;
@@ -387,6 +418,14 @@ TEST(Engine, MemoryReportCountsParticlesPairsAndBonds) {
   for (int k = 0; k + 1 < 64; k += 2) p.bonds.add(k, k + 1, {0, 0, 0}, 0, 1.9);
   config.bond_materials = BondMaterialList<ContactBond>{{800.0, 80.0, 1e9, 1e9}};
   const EngineMemory bonded = Engine(p, config).memory();
-  // i, j, image, material, rest length, state, pair index, order; the shear force.
-  EXPECT_GE(bonded.bonds, p.bonds.size() * (6 * sizeof(int) + 3 * sizeof(int) + sizeof(double) + sizeof(Vec3)));
+  // i, j, image, material, rest length, state, order; the shear force.
+  const std::size_t list_bytes = 2 * sizeof(int) + 3 * sizeof(std::int16_t) + sizeof(std::uint16_t) + sizeof(double) +
+                                 sizeof(std::uint8_t) + sizeof(int);
+  EXPECT_GE(bonded.bonds, p.bonds.size() * (list_bytes + sizeof(Vec3)));
+  // Issue #14's budget: at most 100 bytes per elastic bond (its state: two vectors, the torsion
+  // and the failure time), everything the engine keeps per bond included.
+  config.bond_materials = BondMaterialList<ElasticBond>{{.youngs_modulus = 1e9}};
+  const EngineMemory elastic = Engine(p, config).memory();
+  EXPECT_GE(elastic.bonds, p.bonds.size() * (list_bytes + 2 * sizeof(Vec3) + 2 * sizeof(double)));
+  EXPECT_LE(elastic.bonds, p.bonds.size() * 100);
 }

@@ -8,7 +8,8 @@
 namespace packlab::dem {
 
 namespace {
-constexpr std::uint64_t checkpoint_magic = 0x324B43454D454450ULL;  // "PDEMECK2" (laws tagged by name)
+constexpr std::uint64_t checkpoint_magic =
+    0x334B43454D454450ULL;  // "PDEMECK3" (one-byte bond states, scalar bond torsion)
 }
 
 void Engine::save_state(std::ostream& out) const {
@@ -76,7 +77,7 @@ void Engine::load_state(std::istream& in) {
   binary::read_vector(in, damping_, "damping");
   binary::read_vector(in, original_index_, "particle order");
   binary::read_vector(in, wraps_, "periodic images");
-  std::vector<int> bond_state;
+  std::vector<std::uint8_t> bond_state;
   binary::read_vector(in, bond_state, "bond states");
   // Reads the history vector `member` of the law model held by `models`; returns its size.
   const auto read_histories = [&](auto& models, auto member, const char* what) {

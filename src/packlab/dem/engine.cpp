@@ -181,15 +181,23 @@ Engine::Engine(const Packing& packing, const EngineConfig& config) : packing_(pa
     bonds_.material.reserve(in.size());
     bonds_.rest_length.reserve(in.size());
     bonds_.state.reserve(in.size());
-    bonds_.pair.reserve(in.size());
+    constexpr int image_limit = std::numeric_limits<std::int16_t>::max();
+    constexpr int material_limit = std::numeric_limits<std::uint16_t>::max();
     for (std::size_t b = 0; b < in.size(); ++b) {
+      const auto& s = in.image[b];
+      for (const int a : s)
+        if (a < -image_limit || a > image_limit)
+          fail_input(fmt::format("bond {} has image {} {} {}: each component must be in [{}, {}]", b, s[0], s[1], s[2],
+                                 -image_limit, image_limit));
+      if (in.material[b] < 0 || in.material[b] > material_limit)
+        fail_input(fmt::format("bond {} has material {}: must be in [0, {}]", b, in.material[b], material_limit));
       bonds_.i.push_back(internal[static_cast<std::size_t>(in.i[b])]);
       bonds_.j.push_back(internal[static_cast<std::size_t>(in.j[b])]);
-      bonds_.image.push_back(in.image[b]);
-      bonds_.material.push_back(in.material[b]);
+      bonds_.image.push_back(
+          {static_cast<std::int16_t>(s[0]), static_cast<std::int16_t>(s[1]), static_cast<std::int16_t>(s[2])});
+      bonds_.material.push_back(static_cast<std::uint16_t>(in.material[b]));
       bonds_.rest_length.push_back(in.rest_length[b]);
       bonds_.state.push_back(in.state[b] == 0 ? 0 : 1);
-      bonds_.pair.push_back(-1);
       if (in.state[b] != 0) ++broken_bonds_;
     }
   }
@@ -297,7 +305,7 @@ std::vector<double> Engine::bond_strains() const {
 
 std::size_t Engine::intact_bonds() const {
   std::size_t count = 0;
-  for (int st : bonds_.state) count += st == 0;
+  for (const std::uint8_t st : bonds_.state) count += st == 0;
   return count;
 }
 
@@ -316,8 +324,7 @@ EngineMemory Engine::memory() const {
   std::visit([&](const auto& model) { m.contact_history = heap_bytes(model.history) + heap_bytes(model.wall_history); },
              model_);
   m.bonds = heap_bytes(bonds_.i) + heap_bytes(bonds_.j) + heap_bytes(bonds_.image) + heap_bytes(bonds_.material) +
-            heap_bytes(bonds_.rest_length) + heap_bytes(bonds_.state) + heap_bytes(bonds_.pair) +
-            heap_bytes(bond_order_) + heap_bytes(breaks_);
+            heap_bytes(bonds_.rest_length) + heap_bytes(bonds_.state) + heap_bytes(bond_order_) + heap_bytes(breaks_);
   std::visit([&](const auto& model) { m.bonds += heap_bytes(model.history); }, bond_model_);
   for (const ThreadWork& w : work_) {
     m.bonds += heap_bytes(w.failed_bonds);
@@ -355,9 +362,9 @@ Packing Engine::packing() const {
   out.bonds.i.resize(bond_count);
   out.bonds.j.resize(bond_count);
   out.bonds.image.resize(bond_count);
-  out.bonds.material = bonds_.material;
+  out.bonds.material.assign(bonds_.material.begin(), bonds_.material.end());
   out.bonds.rest_length = bonds_.rest_length;
-  out.bonds.state = bonds_.state;
+  out.bonds.state.assign(bonds_.state.begin(), bonds_.state.end());
   for (std::size_t b = 0; b < bond_count; ++b) {
     const auto bi = static_cast<std::size_t>(bonds_.i[b]), bj = static_cast<std::size_t>(bonds_.j[b]);
     out.bonds.i[b] = original_index_[bi];

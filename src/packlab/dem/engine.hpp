@@ -270,13 +270,15 @@ class Engine {
     std::size_t bond_breaks = 0;  // bonds that failed this step
   };
   // Bonds in the engine's particle order; `image` is relative to the input frame (see wraps_).
+  // Narrow types where the range allows (issue #14: bytes per bond; the constructor refuses
+  // an image or material outside them). The listed pair a bond holds is not stored: it is
+  // looked up when the neighbour list is rebuilt and when the bond breaks (listed_pair_of).
   struct BondList {
     std::vector<int> i, j;
-    std::vector<std::array<int, 3>> image;
-    std::vector<int> material;
+    std::vector<std::array<std::int16_t, 3>> image;
+    std::vector<std::uint16_t> material;
     std::vector<double> rest_length;
-    std::vector<int> state;  // 0 intact, 1 broken
-    std::vector<int> pair;   // index in the neighbour list, or -1
+    std::vector<std::uint8_t> state;  // 0 intact, 1 broken
   };
   // What one pair or bond contributes to its two particles (zero when it does not act).
   struct Contribution {
@@ -330,6 +332,9 @@ class Engine {
   double wall_forces(ContactModel<Law>& model, double* stiffness, double* measure_energy, double* measure_force,
                      std::size_t* wall_contacts);
   std::array<int, 3> bond_image_now(std::size_t b) const;
+  // The neighbour-list pair that bond b's two particles (at its image) form, or -1 if they are
+  // not listed (farther apart than the list reaches).
+  int listed_pair_of(std::size_t b) const;
   // From bond b's particle i to the image of its particle j that it holds, now.
   Vec3 bond_vector(std::size_t b) const;
   void update_mass(std::size_t k);

@@ -37,26 +37,28 @@ Vec3 Engine::bond_vector(std::size_t b) const {
          x[static_cast<std::size_t>(bonds_.i[b])];
 }
 
-void Engine::mark_bonded_pairs() {
-  pair_bonded_.assign(neighbors_.pair_count(), 0);
+int Engine::listed_pair_of(std::size_t b) const {
+  auto s = bond_image_now(b);
+  int i = bonds_.i[b], j = bonds_.j[b];
+  if (j < i) {
+    std::swap(i, j);
+    s = {-s[0], -s[1], -s[2]};
+  }
+  if (std::abs(s[0]) > 1 || std::abs(s[1]) > 1 || std::abs(s[2]) > 1) return -1;  // out of range
+  const int code = image_code(s[0], s[1], s[2]);
   const auto& partner = neighbors_.partner();
   const auto& image = neighbors_.image();
+  for (int p = neighbors_.first(i); p < neighbors_.first(i + 1); ++p)
+    if (partner[p] == j && image[p] == code) return p;
+  return -1;
+}
+
+void Engine::mark_bonded_pairs() {
+  pair_bonded_.assign(neighbors_.pair_count(), 0);
   for (std::size_t b = 0; b < bonds_.i.size(); ++b) {
-    bonds_.pair[b] = -1;
     if (bonds_.state[b] != 0) continue;
-    auto s = bond_image_now(b);
-    int i = bonds_.i[b], j = bonds_.j[b];
-    if (j < i) {
-      std::swap(i, j);
-      s = {-s[0], -s[1], -s[2]};
-    }
-    if (std::abs(s[0]) > 1 || std::abs(s[1]) > 1 || std::abs(s[2]) > 1) continue;  // out of range
-    const int code = image_code(s[0], s[1], s[2]);
-    for (int p = neighbors_.first(i); p < neighbors_.first(i + 1); ++p)
-      if (partner[p] == j && image[p] == code) {
-        bonds_.pair[b] = p;
-        pair_bonded_[p] = 1;
-      }
+    const int p = listed_pair_of(b);
+    if (p >= 0) pair_bonded_[static_cast<std::size_t>(p)] = 1;
   }
 }
 

@@ -280,7 +280,7 @@ void Engine::bond_contribution(BondModel<BondLaw>& model, std::size_t b, Contrib
     bonds_.state[b] = 1;
     // The pair interacts through the contact law from the next step on. The pair belongs to
     // the bond's owner, so only this thread touches it, and it was evaluated before.
-    if (bonds_.pair[b] >= 0) pair_bonded_[static_cast<std::size_t>(bonds_.pair[b])] = 0;
+    if (const int p = listed_pair_of(b); p >= 0) pair_bonded_[static_cast<std::size_t>(p)] = 0;
     return;
   }
   const double k = BondLaw::stiffness(params, P.radius[i], P.radius[j], bonds_.rest_length[b]);

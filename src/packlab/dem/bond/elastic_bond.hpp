@@ -25,13 +25,13 @@ namespace packlab::dem {
 struct ElasticBond {
   static constexpr std::string_view name = "elastic";
   struct Params {
-    double youngs_modulus = 0.0;  // E_b [Pa] (must be given)
-    double poisson_ratio = 0.25;  // nu_b [-]
+    double youngs_modulus = 0.0;                                       // E_b [Pa] (must be given)
+    double poisson_ratio = 0.25;                                       // nu_b [-]
     double normal_strength = std::numeric_limits<double>::infinity();  // sigma_max [Pa]
     double shear_strength = std::numeric_limits<double>::infinity();   // tau_max [Pa]
-    double radius_ratio = 1.0;   // R_b / min(r_i, r_j) [-]
-    double relaxation_time = 1e-9;  // [s]
-    bool compressive_breakage = false;  // eq. 16 also for compressed bonds (see above)
+    double radius_ratio = 1.0;                                         // R_b / min(r_i, r_j) [-]
+    double relaxation_time = 1e-9;                                     // [s]
+    bool compressive_breakage = false;                                 // eq. 16 also for compressed bonds (see above)
   };
   static constexpr std::array<Parameter<Params>, 7> parameters{{
       {"youngs_modulus", "Pa", "Bond Young's modulus E_b", &Params::youngs_modulus, ranges::positive},
@@ -46,10 +46,10 @@ struct ElasticBond {
        &Params::compressive_breakage},
   }};
   struct State {
-    Vec3 tangential{};            // xi_t [m]
-    Vec3 torsion{};               // M_n on j [N m]
-    Vec3 bending{};               // M_t on j [N m]
-    double failed_at = -1.0;      // time of failure [s], -1 while intact
+    Vec3 tangential{};        // xi_t [m]
+    double torsion = 0.0;     // M_n on j along the bond axis n [N m] (a scalar: always along n)
+    Vec3 bending{};           // M_t on j [N m]
+    double failed_at = -1.0;  // time of failure [s], -1 while intact
   };
 
   static double bond_radius(const Params& p, double radius_i, double radius_j) {
@@ -107,12 +107,16 @@ struct ElasticBond {
     const Vec3 shear_force = (-shear_modulus * area / l0) * s.tangential;
     // Moments from the relative rotation of j against i, torsion along n, bending across it.
     const Vec3 dtheta = g.dt * g.relative_spin;
-    const Vec3 dtheta_n = dot(dtheta, n) * n;
-    s.torsion = dot(s.torsion, n) * n - (shear_modulus * polar / l0) * dtheta_n;
-    s.bending = rotate_into_plane(s.bending, n, g.mean_spin, g.dt) - (p.youngs_modulus * inertia / l0) * (dtheta - dtheta_n);
+    const double dtheta_along_n = dot(dtheta, n);
+    const Vec3 dtheta_n = dtheta_along_n * n;
+    // Torsion is the moment's component along the current axis, so it is carried as a number
+    // (issue #14: 16 bytes per bond less than a vector, which turning with n only projected).
+    s.torsion -= (shear_modulus * polar / l0) * dtheta_along_n;
+    s.bending =
+        rotate_into_plane(s.bending, n, g.mean_spin, g.dt) - (p.youngs_modulus * inertia / l0) * (dtheta - dtheta_n);
     if (s.failed_at < 0.0) {
-      const double sigma = std::abs(normal_force) / area + norm(s.bending) * rb / inertia;   // eq. 16
-      const double tau = norm(shear_force) / area + norm(s.torsion) * rb / polar;           // eq. 17
+      const double sigma = std::abs(normal_force) / area + norm(s.bending) * rb / inertia;  // eq. 16
+      const double tau = norm(shear_force) / area + std::abs(s.torsion) * rb / polar;       // eq. 17
       if ((sigma >= p.normal_strength && (p.compressive_breakage || length > l0)) || tau >= p.shear_strength) {
         s.failed_at = g.time;
         out.failed = true;
@@ -122,11 +126,12 @@ struct ElasticBond {
     const Vec3 force_t = k * shear_force;
     const Vec3 moment_arm = cross(n, force_t);
     out.force_on_j = (-k * normal_force) * n + force_t;
-    out.torque_i = -g.branch_i * moment_arm - k * (s.torsion + s.bending);
-    out.torque_j = -g.branch_j * moment_arm + k * (s.torsion + s.bending);
+    const Vec3 moment = s.torsion * n + s.bending;
+    out.torque_i = -g.branch_i * moment_arm - k * moment;
+    out.torque_j = -g.branch_j * moment_arm + k * moment;
     const double ka = p.youngs_modulus * area / l0, kt = shear_modulus * area / l0;
     out.energy = k * (0.5 * normal_force * normal_force / ka + 0.5 * norm2(shear_force) / kt +
-                      0.5 * norm2(s.torsion) / (shear_modulus * polar / l0) +
+                      0.5 * s.torsion * s.torsion / (shear_modulus * polar / l0) +
                       0.5 * norm2(s.bending) / (p.youngs_modulus * inertia / l0));
     return out;
   }
