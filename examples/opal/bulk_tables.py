@@ -2,7 +2,7 @@
 """Table of the pore-free silica samples (examples/opal/bulk_study.toml: bpm-inverse-opals §3,
 Table 1, eq. 20) from the study's tasks.csv:
 
-  DATA/opal_bulk_study.csv   one row per sample (side, seed, particles, bonds, E, K_E = E / E_b,
+  DATA/opal_bulk_study.csv   one row per sample (side, height, seed, particles, bonds, E, K_E = E / E_b,
                              strength; strength empty for the E-only runs), then one row per side
                              (seed "mean"): mean and SD over the packings
 
@@ -17,7 +17,7 @@ from packlab.tables import write_table
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 BOND_YOUNGS_MODULUS = 6.53e9  # silica.toml, Table 1
-COLUMNS = ["side_nm", "seed", "particles", "bonds", "youngs_modulus_gpa", "youngs_modulus_gpa_sd", "bulk_factor",
+COLUMNS = ["side_nm", "height_nm", "seed", "particles", "bonds", "youngs_modulus_gpa", "youngs_modulus_gpa_sd", "bulk_factor",
            "bulk_factor_sd", "strength_mpa", "strength_mpa_sd", "strain_at_peak", "seconds"]
 
 
@@ -32,7 +32,8 @@ def main(argv):
     for t in tasks:
         broke = float(t["compress.broken_bonds"]) > 0  # the E-only runs stop at 1e-6 strain, before any break
         e = float(t["compress.youngs_modulus"])
-        rows.append({"side_nm": int(float(t["side_nm"])), "seed": int(t["seed"]),
+        height_nm = float(t["packing.box"].split(",")[2]) * 1e9  # the box's z edge
+        rows.append({"side_nm": int(float(t["side_nm"])), "height_nm": round(height_nm, 6), "seed": int(t["seed"]),
                      "particles": int(float(t["compress.particles"])), "bonds": int(float(t["compress.bonds"])),
                      "youngs_modulus_gpa": e * 1e-9, "youngs_modulus_gpa_sd": "", "bulk_factor": e / BOND_YOUNGS_MODULUS,
                      "bulk_factor_sd": "", "strength_mpa": float(t["compress.strength"]) * 1e-6 if broke else "",
@@ -41,7 +42,7 @@ def main(argv):
     rows.sort(key=lambda r: (r["side_nm"], r["seed"]))
     for side in sorted({r["side_nm"] for r in rows}):
         level = [r for r in rows if r["side_nm"] == side]
-        summary = {"side_nm": side, "seed": "mean", "seconds": ""}
+        summary = {"side_nm": side, "height_nm": level[0]["height_nm"], "seed": "mean", "seconds": ""}
         for name in ("particles", "bonds", "youngs_modulus_gpa", "bulk_factor", "strength_mpa", "strain_at_peak"):
             values = [r[name] for r in level if r[name] != ""]
             m, sd = mean_sd(values) if values else ("", "")

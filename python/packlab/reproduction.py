@@ -399,9 +399,12 @@ def opal_porosity_resolution_values(data):
     ratios = sorted({float(r["d_over_d"]) for r in measured})
     counts = sorted(float(r["particles"]) for r in measured)
     span = f"{counts[0]:.0f}-{counts[-1]:.0f} (means per level)"
+    scales = sorted({float(r["scale"]) for r in measured})
+    seeds = max(int(r["seeds"]) for r in measured)
     what = (f"the random-pore samples at D/d = {', '.join(f'{x:g}' for x in ratios)} (the paper's sample scaled by "
-            "150 s/762, s = 0.6, 0.75, 1: the same pore count and box in units of the pore spacing), paper's bonds, static solver, seeds "
-            "1-3; q = q_inf + c d/D taken at D/d = 51, SD: fit error and the spread of the laws 1/x^2, 1/sqrt(x)")
+            f"150 s/762, s = {', '.join(f'{x:g}' for x in scales)}: the same pore count and box in units of the pore "
+            f"spacing), paper's bonds, static solver, up to {seeds} packings per level; q = q_inf + c d/D taken at "
+            "D/d = 51, SD: fit error and the spread of the laws 1/x^2, 1/sqrt(x)")
     for r in rows:
         if not r["scale"].startswith("D/d"):
             continue
@@ -467,17 +470,21 @@ def opal_structure_values(data):
         out["opal.bulk_strength"]["note"] += (
             f"; {float(runs['bulk_compressive']['strength']) * 1e-6:.0f} MPa with eq. 16 on compressed bonds too "
             f"(examples/opal/run.sh, one {runs['bulk_compressive']['particles']}-particle sample)")
-    if "bulk" in runs and "opal.K_E" not in out:
+    # Each of the two bulk rows from run.sh's single sample where the bulk study lacks it.
+    if "bulk" in runs:
         bulk = runs["bulk"]
         note = (f"pore-free FBA sample, porosity 0.38, {bulk['particles']} particles, periodic sides, E_b 6.53 GPa "
                 "(examples/opal/run.sh)")
-        out["opal.K_E"] = _ours(float(bulk["youngs_modulus"]) / float(bulk["bond_youngs_modulus"]), 0.0, 1,
-                                bulk["particles"], note)
+        if "opal.K_E" not in out:
+            out["opal.K_E"] = _ours(float(bulk["youngs_modulus"]) / float(bulk["bond_youngs_modulus"]), 0.0, 1,
+                                    bulk["particles"], note)
         compressive = runs.get("bulk_compressive")
-        out["opal.bulk_strength"] = _ours(
-            float(bulk["strength"]) * 1e-6, 0.0, 1, bulk["particles"],
-            note + "; eq. 16 on stretched bonds only (MUSEN)" +
-            (f"; {float(compressive['strength']) * 1e-6:.0f} MPa with eq. 16 on compressed bonds too" if compressive else ""))
+        if "opal.bulk_strength" not in out:
+            out["opal.bulk_strength"] = _ours(
+                float(bulk["strength"]) * 1e-6, 0.0, 1, bulk["particles"],
+                note + "; eq. 16 on stretched bonds only (MUSEN)" +
+                (f"; {float(compressive['strength']) * 1e-6:.0f} MPa with eq. 16 on compressed bonds too"
+                 if compressive else ""))
     if "coated" in runs and "opal.coating20_E" not in out:
         coated = runs["coated"]
         note = (f"FCC opal at D/d = 9.2 with 3.6 nm of titania (20 nm x 138/762), density "
@@ -526,7 +533,7 @@ def opal_coating_values(data):
 
 def opal_bulk_values(data):
     """K_E and the bulk strength from the pore-free samples of examples/opal/bulk_study.toml
-    (five packings per size): the largest size that has each quantity; {} without the table."""
+    (several packings per size): the largest size that has each quantity; {} without the table."""
     levels = [r for r in read_table(os.path.join(data, "opal_bulk_study.csv")) if r["seed"] == "mean"]
     out = {}
 
@@ -548,11 +555,13 @@ def opal_bulk_values(data):
         if r is None:
             continue
         side = int(float(r["side_nm"]))
-        out[key] = _ours(float(r[column]) * scale, float(r[column + "_sd"]) * scale, count(r["side_nm"], column),
+        packings = count(r["side_nm"], column)
+        out[key] = _ours(float(r[column]) * scale, float(r[column + "_sd"]) * scale, packings,
                          f"{float(r['particles']):.0f}",
-                         f"pore-free FBA silica (porosity 0.38, periodic sides), {side} x {side} x {1.4 * side:.0f} nm, "
-                         f"E_b 6.53 GPa, sigma_max 94.3 MPa (eq. 16 on stretched bonds only), static solver, five "
-                         f"packings (examples/opal/bulk_study.toml); by size: " + others(column, scale, 4))
+                         f"pore-free FBA silica (porosity 0.38, periodic sides), {side} x {side} x "
+                         f"{float(r['height_nm']):.0f} nm, E_b 6.53 GPa, sigma_max 94.3 MPa (eq. 16 on stretched bonds "
+                         f"only), static solver, {packings} packings (examples/opal/bulk_study.toml); by size: "
+                         + others(column, scale, 4))
     return out
 
 
@@ -715,7 +724,8 @@ def render(csv_path, md_path):
         text = f.read()
     for paper in sorted({r["paper"] for r in rows}):
         text = _replace(text, f"REPRODUCTION TABLE {paper}", markdown_table([r for r in rows if r["paper"] == paper]))
-    summary = ["| paper | rows | within | not within | no value yet |", "|---|---|---|---|---|"]
+    summary = ["| paper | rows | within | not within | n/a (no value yet, or no paper value) |",
+               "|---|---|---|---|---|"]
     for paper in sorted({r["paper"] for r in rows}):
         rs = [r for r in rows if r["paper"] == paper]
         count = lambda w: sum(1 for r in rs if r["within"] == w)

@@ -196,12 +196,13 @@ def test_collect_reads_the_coating_and_bulk_studies(tmp_path):
     (study / "tasks.csv").write_text("\n".join(lines) + "\n")
     bulk = tmp_path / "bulk"
     bulk.mkdir()
-    lines = ["side_nm,seed,compress.particles,compress.bonds,compress.youngs_modulus,compress.strength,"
+    lines = ["side_nm,packing.box,seed,compress.particles,compress.bonds,compress.youngs_modulus,compress.strength,"
              "compress.strain_at_peak,compress.broken_bonds,compress.seconds,status"]
     for seed, factor in ((1, 3.4), (2, 3.5), (3, 3.6)):
-        lines.append(f"150,{seed},1600,16000,{factor * 6.53e9},{(1000 + 100 * seed) * 1e6},0.05,500,1,done")
+        lines.append(f'150,"150e-9,150e-9,210e-9",{seed},1600,16000,{factor * 6.53e9},{(1000 + 100 * seed) * 1e6},'
+                     '0.05,500,1,done')
     for seed, factor in ((1, 3.2), (2, 3.3), (3, 3.4)):
-        lines.append(f"300,{seed},13000,130000,{factor * 6.53e9},1.0,0,0,1,done")
+        lines.append(f'300,"300e-9,300e-9,450e-9",{seed},13000,130000,{factor * 6.53e9},1.0,0,0,1,done')
     (bulk / "tasks.csv").write_text("\n".join(lines) + "\n")
     env = {**os.environ, "PYTHONPATH": os.path.join(ROOT, "python")}
     for script, out in (("coating_tables.py", study), ("bulk_tables.py", bulk)):
@@ -221,6 +222,7 @@ def test_collect_reads_the_coating_and_bulk_studies(tmp_path):
     assert float(rows["opal.K_E"]["packlab_value"]) == pytest.approx(3.3)  # the largest size
     assert float(rows["opal.K_E"]["packlab_sd"]) == pytest.approx(0.1)
     assert rows["opal.K_E"]["realizations"] == 3 and rows["opal.K_E"]["within"] == "yes"  # 3.3 +- 0.1 against 3.35
+    assert "300 x 300 x 450 nm" in rows["opal.K_E"]["note"] and "3 packings" in rows["opal.K_E"]["note"]
     assert float(rows["opal.bulk_strength"]["packlab_value"]) == pytest.approx(1200.0)  # 150 nm: the only strength
     assert rows["opal.bulk_strength"]["within"] == "no"
 
