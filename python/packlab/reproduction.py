@@ -87,6 +87,7 @@ def _paper_rows():
     # bpm-inverse-opals §2.1 and §3: the FCC opal of 8.05 um^2 x 2.01 um (80,000 particles and
     # 843,000 bonds per um^3: 1.3 million particles) with the calibrated bonds (6.53 GPa, 94.3
     # MPa), the pore-free bulk (Table 1, eq. 20) and the 20 nm titania coating (§4, Fig. 15).
+    rows["opal.fba_porosity"] = (OPAL, "porosity of the initial force-biased packings", "§2.1", "0.38", "", "")
     rows["opal.coordination"] = (OPAL, "bonds per particle of the FCC opal model (\"average coordination number\")",
                                  "§2.1", "10.5", "", "1.3e6")
     rows["opal.E_paper_bonds"] = (OPAL, "E of the FCC opal [GPa], paper's bonds, largest D/d run", "§3", "1.7", "",
@@ -494,15 +495,61 @@ def opal_structure_values(data):
     return out
 
 
+def opal_fba_values(data):
+    """The FBA packings behind the opal studies (opal_fba_packings.csv, examples/opal/fba_tables.py):
+    their porosity, mean and SD over every packing; {} without the table."""
+    rows = read_table(os.path.join(data, "opal_fba_packings.csv"))
+    if not rows:
+        return {}
+    porosity = [float(r["porosity"]) for r in rows]
+    m, sd = mean_sd(porosity)
+    counts = sorted(int(r["particles"]) for r in rows)
+    studies = sorted({r["study"] for r in rows})
+    targets = sorted({float(r["target_porosity"]) for r in rows})
+    contacts = statistics.fmean(float(r["contacts_per_particle"]) for r in rows)
+    note = (f"{len(rows)} packings of 15 nm spheres ({', '.join(studies)}), target porosity "
+            f"{', '.join(f'{t:g}' for t in targets)}: reached {min(porosity):.6f}-{max(porosity):.6f}, the largest "
+            f"overlap left {max(float(r['max_overlap']) for r in rows):.2g} of the diameter (the FBA's tolerance 1e-3), "
+            f"{contacts:.2f} contacts per particle within 0.01 d; the FBA stops at its target, so this row checks "
+            "that it gets there without overlaps, not a measured property")
+    return {"opal.fba_porosity": _ours(m, sd, len(rows), f"{counts[0]}-{counts[-1]}", note)}
+
+
 def opal_coating_values(data):
     """The coating rows from the coated opals at D/d = 9.2-24.5 (examples/opal/coating_tables.py):
     each coating's E and strength extrapolated to the paper's D/d = 51 as the uncoated opal's
     size_study rows are; where a quantity was measured at one D/d only, its mean and SD there.
+    The 20 nm rows' notes add the test of the density (examples/opal/coating_density.toml: the
+    coating thinned at each D/d to the paper's 668 kg/m^3) where its tables exist.
     {} when the study's tables are missing."""
     out = {}
     samples = read_table(os.path.join(data, "opal_coating_resolution.csv"))
     estimates = {(int(float(r["coating_nm"])), r["quantity"]): r
                  for r in read_table(os.path.join(data, "opal_coating_extrapolation.csv")) if r["law"] == "estimate"}
+    density_samples = read_table(os.path.join(data, "opal_coating_density.csv"))
+    density_estimates = {r["quantity"]: r for r in read_table(os.path.join(data, "opal_coating_density_extrapolation.csv"))
+                         if r["law"] == "estimate"}
+
+    def density_test(quantity, unit):
+        """The same quantity with the coating thinned to the paper's density: at D/d = 51 and
+        at each D/d run (means over the packings)."""
+        used = [s for s in density_samples if s[quantity]]
+        if not used:
+            return ""
+        ratios = sorted({float(s["pore_to_particle_diameter"]) for s in used})
+        means = [statistics.fmean(float(s[quantity]) for s in used if float(s["pore_to_particle_diameter"]) == x)
+                 for x in ratios]
+        densities = [statistics.fmean(float(s["density_kg_m3"]) for s in used
+                                      if float(s["pore_to_particle_diameter"]) == x) for x in ratios]
+        at = ", ".join(f"{m:.4g}" for m in means)
+        low, high = f"{min(densities):.0f}", f"{max(densities):.0f}"
+        text = (f"; with the coating thinned at each D/d to the paper's density (examples/opal/coating_density.toml; "
+                f"{low if low == high else low + '-' + high} kg/m^3): {at} {unit} at D/d = "
+                + ", ".join(f"{x:g}" for x in ratios))
+        r = density_estimates.get(quantity)
+        if r is not None:
+            text += f", {float(r['at_target']):.4g} +- {float(r['standard_error']):.2g} {unit} at D/d = 51"
+        return text
     for nm in sorted({int(float(s["coating_nm"])) for s in samples}):
         for quantity, name, unit in (("youngs_modulus_gpa", "E", "GPa"), ("strength_mpa", "strength", "MPa")):
             used = [s for s in samples if int(float(s["coating_nm"])) == nm and s[quantity]]
@@ -522,7 +569,8 @@ def opal_coating_values(data):
                     float(r["at_target"]), float(r["standard_error"]), int(r["samples"]), f"{counts[0]}-{counts[-1]}",
                     what + "; q = q_inf + c d/D taken at D/d = 51 (SD: fit error and the spread of the laws 1/x^2, "
                     f"1/sqrt(x), examples/opal/coating_tables.py); at D/d = {ratios[-1]:g}: {top_mean:.4g} +- "
-                    f"{top_sd:.2g} {unit} ({len(top)} samples), density {density:.0f} kg/m^3 (paper, 20 nm: 668)")
+                    f"{top_sd:.2g} {unit} ({len(top)} samples), density {density:.0f} kg/m^3 (paper, 20 nm: 668)"
+                    + (density_test(quantity, unit) if nm == 20 else ""))
             else:
                 out[f"opal.coating{nm}_{name}"] = _ours(
                     top_mean, top_sd, len(top), f"{counts[0]}-{counts[-1]}",
@@ -672,6 +720,7 @@ def collect(data):
     ours.update(opal_values(data))
     ours.update(opal_porosity_resolution_values(data))
     ours.update(opal_structure_values(data))
+    ours.update(opal_fba_values(data))
     ours.update(scrm_values(data))
     rows = []
     for key, (paper, quantity, source, value, scatter, paper_particles) in PAPER_ROWS.items():

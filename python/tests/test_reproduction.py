@@ -2,6 +2,7 @@
 rendering into the page's markers (docs/reproduction.md)."""
 
 import csv
+import json
 import math
 import os
 import subprocess
@@ -194,6 +195,12 @@ def test_collect_reads_the_coating_and_bulk_studies(tmp_path):
     for seed, modulus in ((1, 9.0), (2, 10.0)):  # 34 nm: one D/d only, so no extrapolation
         lines.append(f"34,{seed},{6e-9},10,1000,300,9000,0.6,700,{modulus * 1e9},5e8,0.06,100,1,done")
     (study / "tasks.csv").write_text("\n".join(lines) + "\n")
+    # The density test: the 20 nm coating thinned, E = 5.8 - 20 d/D at D/d = 10, 20 (E only).
+    thinned = tmp_path / "thinned"
+    thinned.mkdir()
+    (thinned / "tasks.csv").write_text("\n".join(
+        [header] + [f"20,{seed},{19e-9 * x / 51},{x},{int(100 * x)},{int(19 * x)},{int(900 * x)},0.66,{666 + 3 * (x > 10)},"
+                    f"{(5.8 - 20 / x) * 1e9},1.0,0,0,1,done" for x in (10.0, 20.0) for seed in (1, 2)]) + "\n")
     bulk = tmp_path / "bulk"
     bulk.mkdir()
     lines = ["side_nm,packing.box,seed,compress.particles,compress.bonds,compress.youngs_modulus,compress.strength,"
@@ -205,14 +212,20 @@ def test_collect_reads_the_coating_and_bulk_studies(tmp_path):
         lines.append(f'300,"300e-9,300e-9,450e-9",{seed},13000,130000,{factor * 6.53e9},1.0,0,0,1,done')
     (bulk / "tasks.csv").write_text("\n".join(lines) + "\n")
     env = {**os.environ, "PYTHONPATH": os.path.join(ROOT, "python")}
-    for script, out in (("coating_tables.py", study), ("bulk_tables.py", bulk)):
-        subprocess.run([sys.executable, os.path.join(ROOT, "examples", "opal", script), str(out), str(tmp_path)],
+    for script, out, *flags in (("coating_tables.py", study), ("bulk_tables.py", bulk),
+                                ("coating_tables.py", thinned, "--density")):
+        subprocess.run([sys.executable, os.path.join(ROOT, "examples", "opal", script), str(out), str(tmp_path), *flags],
                        check=True, capture_output=True, env=env)
     rows = {r["key"]: r for r in reproduction.collect(str(tmp_path))}
     e = rows["opal.coating20_E"]
     assert float(e["packlab_value"]) == pytest.approx(6 - 20 / 51, rel=1e-4)
     assert float(e["packlab_sd"]) > 0 and e["realizations"] == 8 and e["particles"] == "1001-2502"
     assert "at D/d = 25: 5.2 +- 0 GPa" in e["note"]
+    # The density test is a note, not the row: its E at each D/d and extrapolated to 51.
+    assert "thinned at each D/d to the paper's density" in e["note"] and "666-669 kg/m^3" in e["note"]
+    assert "3.8, 4.8 GPa at D/d = 10, 20" in e["note"]
+    assert f"{5.8 - 20 / 51:.4g} +- " in e["note"]
+    assert "thinned" not in rows["opal.coating20_strength"]["note"]  # no thinned run broke a bond
     strength = rows["opal.coating20_strength"]
     assert float(strength["packlab_value"]) == pytest.approx(250 - 500 / 51, rel=1e-4)
     assert strength["realizations"] == 4  # no strength above D/d = 15
@@ -310,3 +323,24 @@ def test_a_bound_is_met_within_packlabs_sd():
     assert reproduction.within("< 0.2", "", 0.43, 0.1) == "no"
     assert reproduction.within("< 3.1e-4", "", 2.2e-4, 0.0) == "yes"
     assert reproduction.within("", "", 0.84, 0.003) == "n/a"  # no number in the paper
+
+
+def test_fba_porosity_row_reads_every_packing_of_the_studies(tmp_path):
+    # Two studies' packing reports: the row is the mean and SD of their porosity over all of them.
+    for study, seed, porosity in (("a", 1, 0.380), ("a", 2, 0.382), ("b", 1, 0.384)):
+        folder = tmp_path / study / "runs" / f"packing-{seed}"
+        folder.mkdir(parents=True)
+        (folder / "report.json").write_text(json.dumps({
+            "parameters": {"box_m": [3e-7, 2e-7, 4e-7], "seed": seed, "particles": 1000 * seed,
+                           "target_porosity": 0.38},
+            "results": {"porosity": porosity, "verified_max_overlap": 5e-4, "iterations": 10,
+                        "mean_coordination_eps_0.01": 6.0, "fba_seconds": 1.0}}))
+    env = {**os.environ, "PYTHONPATH": os.path.join(ROOT, "python")}
+    subprocess.run([sys.executable, os.path.join(ROOT, "examples", "opal", "fba_tables.py"), str(tmp_path / "a"),
+                    str(tmp_path / "b"), "--data", str(tmp_path)], check=True, capture_output=True, env=env)
+    row = {r["key"]: r for r in reproduction.collect(str(tmp_path))}["opal.fba_porosity"]
+    assert float(row["packlab_value"]) == pytest.approx(0.382)
+    assert float(row["packlab_sd"]) == pytest.approx(0.002)
+    assert row["realizations"] == 3 and row["particles"] == "1000-2000"
+    assert row["within"] == "yes"  # |0.382 - 0.38| <= sqrt(0.005^2 + 0.002^2)
+    assert "(a, b)" in row["note"] and "0.380000-0.384000" in row["note"]
