@@ -14,7 +14,12 @@ pores, D/d = 9.2-24.5, FBA seeds 1-3, static solver) from the study's tasks.csv:
                                         half the spread of the three laws in quadrature
                                         (resolution_extrapolation.py's rule for the uncoated opal)
 
-usage: coating_tables.py STUDY_OUT [DATA]   (DATA defaults to docs/data of this checkout)"""
+With --density, the tables of examples/opal/coating_density.toml instead (the 20 nm coating
+thinned at each D/d to the paper's density of 668 kg/m^3): DATA/opal_coating_density.csv and
+DATA/opal_coating_density_extrapolation.csv, the same columns (coating_nm is the nominal 20,
+coating_m the thickness used).
+
+usage: coating_tables.py STUDY_OUT [DATA] [--density]   (DATA defaults to docs/data of this checkout)"""
 
 import math
 import os
@@ -36,10 +41,15 @@ QUANTITIES = ("youngs_modulus_gpa", "strength_mpa", "density_kg_m3")
 
 
 def main(argv):
+    density = "--density" in argv
+    argv = [a for a in argv if a != "--density"]
     if len(argv) < 2:
         sys.exit(__doc__)
     out = argv[1]
     data = argv[2] if len(argv) > 2 else os.path.join(HERE, "..", "..", "docs", "data")
+    name, extrapolation_name, spec = (
+        ("opal_coating_density", "opal_coating_density_extrapolation", "coating_density.toml") if density else
+        ("opal_coating_resolution", "opal_coating_extrapolation", "coating_resolution.toml"))
     tasks = finished_tasks(out)
     if not tasks:
         sys.exit(f"coating_tables: no finished task in {out}/tasks.csv")
@@ -58,9 +68,11 @@ def main(argv):
             "strain_at_peak": float(t["compress.strain_at_peak"]) if breaks else "", "broken_bonds": breaks,
             "seconds": float(t["compress.seconds"])})
     samples.sort(key=lambda r: (r["coating_nm"], r["pore_to_particle_diameter"], r["seed"]))
-    path = os.path.join(data, "opal_coating_resolution.csv")
+    path = os.path.join(data, name + ".csv")
     write_table(path, {k: [r[k] for r in samples] for k in SAMPLE_COLUMNS},
-                "examples/opal/coating_resolution.toml: FCC opal, titania coating c nm x D / 762 nm, titania bonds of "
+                f"examples/opal/{spec}: FCC opal, titania coating c nm x D / 762 nm"
+                + (" thinned at each D/d to the paper's density 668 kg/m^3 (coating_m: the thickness used)"
+                   if density else "") + ", titania bonds of "
                 "Table 1 (13.72 / 17.89 / 22.21 GPa, 834 MPa), silica 6.53 GPa / 94.3 MPa, static solver")
     print(f"wrote {path} ({len(samples)} rows)")
 
@@ -90,9 +102,8 @@ def main(argv):
             add(coating, quantity, "estimate", first[0], first[1], first[2], error, first[4], len(y), x.max(), *largest)
             print(f"{coating} nm {quantity}: at D/d {x.max():g}: {largest[0]:.4g} +- {largest[1]:.2g}; "
                   f"at D/d {TARGET:g}: {first[2]:.4g} +- {error:.2g}")
-    path = os.path.join(data, "opal_coating_extrapolation.csv")
-    write_table(path, rows, f"opal_coating_resolution.csv extrapolated to D/d = {TARGET:g} "
-                "(examples/opal/coating_tables.py)")
+    path = os.path.join(data, extrapolation_name + ".csv")
+    write_table(path, rows, f"{name}.csv extrapolated to D/d = {TARGET:g} (examples/opal/coating_tables.py)")
     print(f"wrote {path}")
     return 0
 
