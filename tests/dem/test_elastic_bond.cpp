@@ -63,6 +63,29 @@ TEST(ElasticBond, BendingAndTorsionMomentsGrowWithTheRelativeRotation) {
   EXPECT_NEAR(f.torque_j.y, -f.torque_i.y, 1e-12 * std::abs(f.torque_j.y));
 }
 
+// The torsion is the moment's component along the bond: when the bond axis turns (the pair
+// rotates as a rigid body, no relative spin) it keeps its size and turns with the axis; the
+// earlier vector form projected it on the new axis each step and lost cos(dn) of it.
+TEST(ElasticBond, TorsionTurnsWithTheBondAxisWithoutLosingSize) {
+  ElasticBond::State s;
+  ContactGeometry g = bond_geometry(0.0);
+  g.relative_spin = {3e6, 0, 0};  // twist about x, the bond axis
+  for (int k = 0; k < 20; ++k) ElasticBond::evaluate(g, params(), s);
+  const double twisted = s.torsion;
+  ASSERT_LT(twisted, 0.0);
+  g.relative_spin = {};
+  const double turn = 0.01;  // rad per step about z
+  for (int k = 1; k <= 50; ++k) {
+    g.normal = {std::cos(k * turn), std::sin(k * turn), 0.0};
+    g.mean_spin = {0.0, 0.0, turn / g.dt};
+    const BondForce f = ElasticBond::evaluate(g, params(), s);
+    EXPECT_DOUBLE_EQ(s.torsion, twisted);
+    // No shear and no bending: the moment on j is the torsion along the current axis.
+    EXPECT_NEAR(dot(f.torque_j, g.normal), twisted, 1e-12 * std::abs(twisted));
+    EXPECT_NEAR(norm(cross(f.torque_j, g.normal)), 0.0, 1e-9 * std::abs(twisted));
+  }
+}
+
 TEST(ElasticBond, ShearForceIsGAOverLength) {
   ElasticBond::State s;
   ContactGeometry g = bond_geometry(0.0);

@@ -45,7 +45,11 @@ int Engine::listed_pair_of(std::size_t b) const {
     s = {-s[0], -s[1], -s[2]};
   }
   if (std::abs(s[0]) > 1 || std::abs(s[1]) > 1 || std::abs(s[2]) > 1) return -1;  // out of range
-  const int code = image_code(s[0], s[1], s[2]);
+  int code = image_code(s[0], s[1], s[2]);
+  // A particle bonded to its own image: the list would hold that pair once, at the image code
+  // above the unshifted one (core/neighbor_list.cpp), so the bond's image or its opposite. (The
+  // engine refuses boxes shorter than the interaction range, so such a pair is not listed today.)
+  if (i == j && code < unshifted_image) code = image_code(-s[0], -s[1], -s[2]);
   const auto& partner = neighbors_.partner();
   const auto& image = neighbors_.image();
   for (int p = neighbors_.first(i); p < neighbors_.first(i + 1); ++p)
