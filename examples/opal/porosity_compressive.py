@@ -17,12 +17,11 @@ import os
 import sys
 
 from packlab.reproduction import mean_sd
-from packlab.studies import finished_tasks
 from packlab.tables import write_table
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, HERE)
-from porosity_resolution import seed_laws  # noqa: E402
+from porosity_resolution import samples, seed_laws  # noqa: E402
 
 SCALE = 0.6  # D/d = 5.12
 COLUMNS = ["eq16_applies_to", "pore_fraction", "seeds", "youngs_modulus_mean", "youngs_modulus_sd", "strength_mean",
@@ -32,9 +31,9 @@ COLUMNS = ["eq16_applies_to", "pore_fraction", "seeds", "youngs_modulus_mean", "
 def by_level(out):
     """{pore fraction: {seed: task}} of the scale-0.6 samples of a study."""
     found = {}
-    for t in finished_tasks(out):
-        if float(t["scale"]) == SCALE:
-            found.setdefault(float(t["opal.pore-fraction"]), {})[int(t["seed"])] = t
+    for (scale, fraction, seed), (_, t) in samples(out, True).items():
+        if scale == SCALE:
+            found.setdefault(fraction, {})[seed] = t
     return found
 
 
