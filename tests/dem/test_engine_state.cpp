@@ -5,6 +5,7 @@
 #include <numbers>
 #include <sstream>
 
+#include "../input_error.hpp"
 #include "../test_packings.hpp"
 #include "checkpoint.hpp"
 #include "packlab/core/error.hpp"
@@ -46,6 +47,15 @@ TEST(EngineState, CheckpointContinuesBitwiseIdentically) {
   test::expect_checkpoint_continues_bitwise(two_types(600, 4), two_type_config(), 200);
 }
 
+// Per-particle densities from the input are the one per-particle mass source the engine keeps
+// besides the types (issue #14): they survive a checkpoint.
+TEST(EngineState, CheckpointWithInputDensitiesContinuesBitwiseIdentically) {
+  Packing p = two_types(600, 6);
+  p.density.assign(p.size(), 1000.0);
+  for (std::size_t i = 0; i < p.size(); i += 3) p.density[i] = 2500.0;
+  test::expect_checkpoint_continues_bitwise(p, two_type_config(), 200);
+}
+
 TEST(EngineState, DamagedOrForeignCheckpointIsAnInputError) {
   const Packing p = two_types(100, 5);
   Engine e(p, two_type_config());
@@ -60,6 +70,14 @@ TEST(EngineState, DamagedOrForeignCheckpointIsAnInputError) {
   Engine other(two_types(104, 5), two_type_config());
   std::stringstream again(bytes);
   EXPECT_THROW(other.load_state(again), InputError);
+  // An earlier version's state: the refusal names its format and this version's.
+  std::string older = bytes;
+  ASSERT_EQ(older.substr(0, 8), "PDEMECK4");
+  older[7] = '3';
+  std::stringstream old_state(older);
+  const std::string message = test::error_of([&] { target.load_state(old_state); });
+  EXPECT_NE(message.find("header PDEMECK3"), std::string::npos) << message;
+  EXPECT_NE(message.find("reads PDEMECK4"), std::string::npos) << message;
 }
 
 TEST(EngineState, GrowingRadiusScalesMassAtConstantDensity) {
@@ -77,7 +95,8 @@ TEST(EngineState, GrowingRadiusScalesMassAtConstantDensity) {
     const double r = P.radius[k];
     const double rho = P.type[k] == 1 ? 100.0 : 1000.0;
     EXPECT_NEAR(P.mass[k], rho * 4.0 / 3.0 * std::numbers::pi * r * r * r, 1e-12 * P.mass[k]);
-    EXPECT_NEAR(P.inertia[k], 0.4 * P.mass[k] * r * r, 1e-12 * P.inertia[k]);
+    const double inertia = 0.4 * P.mass[k] * r * r;
+    EXPECT_NEAR(P.inverse_inertia[k], 1.0 / inertia, 1e-12 / inertia);
   }
   EXPECT_THROW(e.set_radius_of_type(1, -1.0), InputError);
 }

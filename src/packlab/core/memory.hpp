@@ -24,4 +24,11 @@ std::size_t heap_bytes(const std::vector<T>& v) {
   return v.capacity() * sizeof(T);
 }
 
+// Gives a vector's heap back. (`v = {}` would not: it picks the initializer-list assignment,
+// which empties the vector and keeps its capacity.)
+template <class T>
+void release_memory(std::vector<T>& v) {
+  std::vector<T>().swap(v);
+}
+
 }  // namespace packlab

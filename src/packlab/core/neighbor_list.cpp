@@ -88,25 +88,27 @@ void NeighborList::build(const Box& box, std::vector<Vec3>& position, const std:
 
   const CellGrid grid = make_grid(box, position, range);
   const int cells = grid.count[0] * grid.count[1] * grid.count[2];
+  // The cells and the cell-ordered copies live only while the list is built (issue #14: bytes
+  // per particle; allocating them costs far less than the scan that fills the list).
   // Counting sort of particles into cells (stable: particles keep index order in a cell).
-  cell_start_.assign(cells + 1, 0);
-  particle_cell_.resize(n);
+  std::vector<int> cell_start(static_cast<std::size_t>(cells) + 1, 0);
+  std::vector<int> particle_cell(static_cast<std::size_t>(n));
   for (int i = 0; i < n; ++i) {
-    particle_cell_[i] = grid.index(position[i]);
-    ++cell_start_[particle_cell_[i] + 1];
+    particle_cell[i] = grid.index(position[i]);
+    ++cell_start[particle_cell[i] + 1];
   }
-  for (int c = 0; c < cells; ++c) cell_start_[c + 1] += cell_start_[c];
-  cell_particles_.resize(n);
+  for (int c = 0; c < cells; ++c) cell_start[c + 1] += cell_start[c];
+  std::vector<int> cell_particles(static_cast<std::size_t>(n));
   {
-    std::vector<int> fill(cell_start_.begin(), cell_start_.end() - 1);
-    for (int i = 0; i < n; ++i) cell_particles_[fill[particle_cell_[i]]++] = i;
+    std::vector<int> fill(cell_start.begin(), cell_start.end() - 1);
+    for (int i = 0; i < n; ++i) cell_particles[fill[particle_cell[i]]++] = i;
   }
   // Positions and radii in cell order: the stencil scan below then reads memory in sequence.
-  cell_position_.resize(n);
-  cell_radius_.resize(n);
+  std::vector<Vec3> cell_position(static_cast<std::size_t>(n));
+  std::vector<double> cell_radius(static_cast<std::size_t>(n));
   for (int k = 0; k < n; ++k) {
-    cell_position_[k] = position[cell_particles_[k]];
-    cell_radius_[k] = radius[cell_particles_[k]];
+    cell_position[k] = position[cell_particles[k]];
+    cell_radius[k] = radius[cell_particles[k]];
   }
 
   // Keep the old list to map per-pair history onto the new one.
@@ -117,8 +119,8 @@ void NeighborList::build(const Box& box, std::vector<Vec3>& position, const std:
   threads = std::max(1, std::min(threads, std::max(1, n / 256)));
   // Thread 0 lists its chunk straight into partner_ and image_ (the whole list with one
   // thread); the later chunks go to per-thread buffers appended after the region.
-  thread_partner_.resize(threads - 1);
-  thread_image_.resize(threads - 1);
+  std::vector<std::vector<int>> thread_partner(static_cast<std::size_t>(threads - 1));
+  std::vector<std::vector<std::uint8_t>> thread_image(static_cast<std::size_t>(threads - 1));
   // About the last list's share of pairs, with a margin: the count changes little between
   // rebuilds, so thread 0's lists rarely regrow (a first build grows them as it goes).
   partner_.clear();
@@ -140,8 +142,8 @@ void NeighborList::build(const Box& box, std::vector<Vec3>& position, const std:
 #pragma omp parallel num_threads(threads)
   errors.run(omp_get_thread_num(), [&] {
     const int t = omp_get_thread_num();
-    auto& tp = t == 0 ? partner_ : thread_partner_[t - 1];
-    auto& ti = t == 0 ? image_ : thread_image_[t - 1];
+    auto& tp = t == 0 ? partner_ : thread_partner[t - 1];
+    auto& ti = t == 0 ? image_ : thread_image[t - 1];
     tp.clear();
     ti.clear();
     // Static contiguous chunks of i: concatenating the chunks in thread order gives the
@@ -151,11 +153,11 @@ void NeighborList::build(const Box& box, std::vector<Vec3>& position, const std:
     // Plain local pointers: inside the parallel region members and captured vectors would be
     // reloaded through `this` after every push_back (possible aliasing), several loads per
     // candidate.
-    const int* __restrict slot_particle = cell_particles_.data();
-    const Vec3* __restrict slot_position = cell_position_.data();
-    const double* __restrict slot_radius = cell_radius_.data();
-    const int* __restrict slot_start = cell_start_.data();
-    const int* __restrict cell_of = particle_cell_.data();
+    const int* __restrict slot_particle = cell_particles.data();
+    const Vec3* __restrict slot_position = cell_position.data();
+    const double* __restrict slot_radius = cell_radius.data();
+    const int* __restrict slot_start = cell_start.data();
+    const int* __restrict cell_of = particle_cell.data();
     const std::array<Vec3, 27> offsets = offsets_;
     const double skin = skin_ + reach_;  // listing range beyond touching
     const std::size_t pair_limit = static_cast<std::size_t>(max_pairs_per_particle * (end - begin + 1));
@@ -259,8 +261,15 @@ void NeighborList::build(const Box& box, std::vector<Vec3>& position, const std:
   partner_.reserve(first_[n]);
   image_.reserve(first_[n]);
   for (int t = 0; t + 1 < threads; ++t) {
-    partner_.insert(partner_.end(), thread_partner_[t].begin(), thread_partner_[t].end());
-    image_.insert(image_.end(), thread_image_[t].begin(), thread_image_[t].end());
+    partner_.insert(partner_.end(), thread_partner[t].begin(), thread_partner[t].end());
+    image_.insert(image_.end(), thread_image[t].begin(), thread_image[t].end());
+  }
+  // Thread 0's list grows by doubling when its share outgrows the reservation: give back room
+  // beyond an eighth of the size (issue #14: bytes per listed pair; a list that doubled once
+  // kept up to twice what it needs for the rest of the run).
+  if (partner_.capacity() > partner_.size() + partner_.size() / 8) {
+    partner_.shrink_to_fit();
+    image_.shrink_to_fit();
   }
 
   // Map new pairs onto old ones (both lists are sorted per i).
@@ -283,14 +292,12 @@ void NeighborList::build(const Box& box, std::vector<Vec3>& position, const std:
   ++builds_;
 }
 
+void NeighborList::release_history_map() { release_memory(previous_index_); }
+
 NeighborList::Memory NeighborList::memory() const {
   Memory m;
-  m.per_particle_arrays = heap_bytes(first_) + heap_bytes(position_at_build_) + heap_bytes(radius_at_build_) +
-                          heap_bytes(cell_start_) + heap_bytes(cell_particles_) + heap_bytes(particle_cell_) +
-                          heap_bytes(cell_position_) + heap_bytes(cell_radius_);
+  m.per_particle_arrays = heap_bytes(first_) + heap_bytes(position_at_build_) + heap_bytes(radius_at_build_);
   m.per_pair_arrays = heap_bytes(partner_) + heap_bytes(image_) + heap_bytes(previous_index_);
-  for (const auto& v : thread_partner_) m.per_pair_arrays += heap_bytes(v);
-  for (const auto& v : thread_image_) m.per_pair_arrays += heap_bytes(v);
   return m;
 }
 

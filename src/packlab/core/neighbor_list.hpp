@@ -53,13 +53,18 @@ class NeighborList {
   const std::vector<int>& partner() const { return partner_; }
   const std::vector<std::uint8_t>& image() const { return image_; }
   // Index of each current pair in the list before the last rebuild, or -1 if it is new:
-  // lets callers carry per-pair history (shear springs) across rebuilds.
+  // lets callers carry per-pair history (shear springs) across rebuilds. Empty after
+  // release_history_map() until the next build.
   const std::vector<int>& previous_index() const { return previous_index_; }
+  // Frees the map above, for a caller that has carried its histories over (it would otherwise
+  // be kept until the next build: 4 bytes per listed pair).
+  void release_history_map();
   // Displacement of image code c in the box the list was built for.
   const Vec3& image_offset(int code) const { return offsets_[code]; }
   long builds() const { return builds_; }
-  // Heap bytes held (capacities): per particle (index, positions and radii at the build, the
-  // cell arrays) and per listed pair (partner, image, the history map, per-thread lists).
+  // Heap bytes held (capacities): per particle (index, positions and radii at the build) and
+  // per listed pair (partner, image, the history map unless released). The cells and the
+  // per-thread lists of a build live only while it runs.
   struct Memory {
     std::size_t per_particle_arrays = 0, per_pair_arrays = 0;
   };
@@ -79,12 +84,6 @@ class NeighborList {
   std::array<Vec3, 27> offsets_{};
   std::vector<Vec3> position_at_build_;
   std::vector<double> radius_at_build_;
-  // cells (kept to avoid re-allocating on every rebuild)
-  std::vector<int> cell_start_, cell_particles_, particle_cell_;
-  std::vector<Vec3> cell_position_;  // positions and radii in cell order, for the scan
-  std::vector<double> cell_radius_;
-  std::vector<std::vector<int>> thread_partner_;
-  std::vector<std::vector<std::uint8_t>> thread_image_;
   long builds_ = 0;
 };
 

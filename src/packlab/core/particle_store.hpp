@@ -8,6 +8,9 @@
 
 namespace packlab {
 
+// Moment of inertia of a solid sphere [kg m^2].
+inline double sphere_inertia(double mass, double radius) { return 0.4 * mass * radius * radius; }
+
 struct ParticleStore {
   std::vector<Vec3> position;          // [m]
   std::vector<Vec3> velocity;          // [m/s]  (half-step velocity of the leap-frog scheme)
@@ -16,9 +19,10 @@ struct ParticleStore {
   std::vector<Vec3> torque;            // [N m]
   std::vector<double> radius;          // [m]
   std::vector<double> mass;            // [kg]
-  std::vector<double> inertia;         // moment of inertia [kg m^2] (2/5 m r^2 for a sphere)
   std::vector<double> inverse_mass;    // 0 for fixed particles
-  std::vector<double> inverse_inertia; // 0 for fixed particles
+  // 1 / sphere_inertia(mass, radius), 0 for fixed particles. The moment of inertia itself is
+  // not stored (issue #14: bytes per particle).
+  std::vector<double> inverse_inertia;
   std::vector<int> type;
   std::vector<std::uint8_t> fixed;
 
@@ -31,7 +35,6 @@ struct ParticleStore {
     torque.resize(n);
     radius.resize(n);
     mass.resize(n);
-    inertia.resize(n);
     inverse_mass.resize(n);
     inverse_inertia.resize(n);
     type.resize(n);

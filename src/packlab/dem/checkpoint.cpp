@@ -8,9 +8,19 @@
 namespace packlab::dem {
 
 namespace {
-constexpr std::uint64_t checkpoint_magic =
-    0x334B43454D454450ULL;  // "PDEMECK3" (one-byte bond states, scalar bond torsion)
+// "PDEMECK4": no per-particle damping, densities only when the input had them. (3: one-byte
+// bond states, scalar bond torsion.)
+constexpr std::uint64_t checkpoint_magic = 0x344B43454D454450ULL;
+
+// The eight header bytes as text when they are an engine checkpoint's tag ("PDEMECK3"), else
+// in hex: what the refusal of another version's checkpoint names.
+std::string header_name(std::uint64_t magic) {
+  std::string text;
+  for (int b = 0; b < 8; ++b) text += static_cast<char>((magic >> (8 * b)) & 0xFF);
+  if (text.rfind("PDEMECK", 0) == 0 && text[7] >= '0' && text[7] <= '9') return text;
+  return fmt::format("0x{:016x}", magic);
 }
+}  // namespace
 
 void Engine::save_state(std::ostream& out) const {
   binary::write(out, checkpoint_magic);
@@ -31,7 +41,6 @@ void Engine::save_state(std::ostream& out) const {
   binary::write_vector(out, P.type);
   binary::write_vector(out, P.fixed);
   binary::write_vector(out, density_);
-  binary::write_vector(out, damping_);
   binary::write_vector(out, original_index_);
   binary::write_vector(out, wraps_);
   binary::write_vector(out, bonds_.state);
@@ -48,7 +57,12 @@ void Engine::save_state(std::ostream& out) const {
 void Engine::load_state(std::istream& in) {
   std::uint64_t magic = 0, n = 0;
   binary::read(in, magic, "header");
-  if (magic != checkpoint_magic) fail_input("checkpoint: not a packlab engine state of this version (bad header)");
+  if (magic != checkpoint_magic)
+    fail_input(
+        fmt::format("checkpoint: not a packlab engine state of this version (header {}, this version writes and "
+                    "reads {}): start the run again without resuming, or resume it with the version that "
+                    "wrote it",
+                    header_name(magic), header_name(checkpoint_magic)));
   binary::read(in, n, "particle count");
   if (n != particles_.size())
     fail_input(fmt::format("checkpoint holds {} particles, the engine {}", n, particles_.size()));
@@ -74,7 +88,6 @@ void Engine::load_state(std::istream& in) {
   binary::read_vector(in, P.type, "types");
   binary::read_vector(in, P.fixed, "fixed flags");
   binary::read_vector(in, density_, "densities");
-  binary::read_vector(in, damping_, "damping");
   binary::read_vector(in, original_index_, "particle order");
   binary::read_vector(in, wraps_, "periodic images");
   std::vector<std::uint8_t> bond_state;
@@ -105,9 +118,13 @@ void Engine::load_state(std::istream& in) {
     fail_input("checkpoint is damaged: wall data do not match");
   for (auto* v : {&P.position, &P.velocity, &P.angular_velocity, &P.force, &P.torque})
     if (v->size() != n) fail_input("checkpoint is damaged: array sizes differ");
-  if (P.radius.size() != n || P.type.size() != n || P.fixed.size() != n || density_.size() != n ||
-      damping_.size() != n || original_index_.size() != n)
+  if (P.radius.size() != n || P.type.size() != n || P.fixed.size() != n ||
+      density_.size() != (input_has_density_ ? n : 0) || original_index_.size() != n)
     fail_input("checkpoint is damaged: array sizes differ");
+  for (const int t : P.type)
+    if (t < 0 || static_cast<std::size_t>(t) >= type_damping_.size())
+      fail_input(fmt::format("checkpoint is damaged: particle type {} (the packing has types 0 to {})", t,
+                             type_damping_.size() - 1));
   for (std::size_t k = 0; k < n; ++k) update_mass(k);
   masses_changed();
   neighbors_.load(in);
@@ -117,7 +134,6 @@ void Engine::load_state(std::istream& in) {
     fail_input("checkpoint is damaged: contact histories do not match the neighbour list");
   binary::read_vector(in, breaks_, "bond breaks");
   mark_bonded_pairs();
-  fill_pair_owners();
   partition_work();
 }
 

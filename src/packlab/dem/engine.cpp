@@ -138,23 +138,22 @@ Engine::Engine(const Packing& packing, const EngineConfig& config) : packing_(pa
   for (double r : packing_.radius) r_max = std::max(r_max, r);
   original_index_ = spatial_order(packing_.box, packing_.position, 2.0 * r_max * (1.0 + config_.skin_ratio));
   particles_.resize(n);
-  damping_.resize(n);
-  density_.resize(n);
+  // Per type, not per particle (issue #14: bytes per particle).
+  type_damping_.resize(static_cast<std::size_t>(type_count));
+  for (int t = 0; t < type_count; ++t) type_damping_[static_cast<std::size_t>(t)] = params_of_type(t).damping;
+  if (!packing_.density.empty()) density_.resize(n);
   for (std::size_t k = 0; k < n; ++k) {
     const std::size_t i = static_cast<std::size_t>(original_index_[k]);
-    const Material& tp = params_of_type(packing_.type[i]);
     const double r = packing_.radius[i];
-    const double density = packing_.density.empty() ? tp.density : packing_.density[i];
     particles_.position[k] = packing_.position[i];
     particles_.velocity[k] = packing_.velocity.empty() ? Vec3{} : packing_.velocity[i];
     particles_.angular_velocity[k] = packing_.angular_velocity.empty() ? Vec3{} : packing_.angular_velocity[i];
     particles_.radius[k] = r;
     particles_.type[k] = packing_.type[i];
     particles_.fixed[k] = packing_.fixed.empty() ? 0 : packing_.fixed[i];
-    density_[k] = density;
+    if (!density_.empty()) density_[k] = packing_.density[i];
     update_mass(k);
     if (particles_.fixed[k]) particles_.velocity[k] = particles_.angular_velocity[k] = Vec3{};
-    damping_[k] = tp.damping;
   }
 
   model_ = make_contact_model(config_.contact_law, config_.types, type_count, config_.stiffness_rule);
@@ -202,12 +201,13 @@ Engine::Engine(const Packing& packing, const EngineConfig& config) : packing_(pa
     }
   }
   // Bonds by owner (the smaller particle index), then by bond index (dem/step.cpp).
+  // (Both empty without bonds.)
   bond_order_.resize(bonds_.i.size());
-  bond_first_.assign(n + 1, 0);
-  for (std::size_t b = 0; b < bonds_.i.size(); ++b)
-    ++bond_first_[static_cast<std::size_t>(std::min(bonds_.i[b], bonds_.j[b])) + 1];
-  for (std::size_t k = 0; k < n; ++k) bond_first_[k + 1] += bond_first_[k];
-  {
+  if (!bonds_.i.empty()) {
+    bond_first_.assign(n + 1, 0);
+    for (std::size_t b = 0; b < bonds_.i.size(); ++b)
+      ++bond_first_[static_cast<std::size_t>(std::min(bonds_.i[b], bonds_.j[b])) + 1];
+    for (std::size_t k = 0; k < n; ++k) bond_first_[k + 1] += bond_first_[k];
     std::vector<int> next(bond_first_.begin(), bond_first_.end() - 1);
     for (std::size_t b = 0; b < bonds_.i.size(); ++b)
       bond_order_[static_cast<std::size_t>(next[static_cast<std::size_t>(std::min(bonds_.i[b], bonds_.j[b]))]++)] =
@@ -230,13 +230,13 @@ Engine::Engine(const Packing& packing, const EngineConfig& config) : packing_(pa
   // packing() rebuilds the input's arrays from them.
   input_has_density_ = !packing_.density.empty();
   input_has_fixed_ = !packing_.fixed.empty();
-  packing_.position = {};
-  packing_.radius = {};
-  packing_.type = {};
-  packing_.velocity = {};
-  packing_.angular_velocity = {};
-  packing_.density = {};
-  packing_.fixed = {};
+  release_memory(packing_.position);
+  release_memory(packing_.radius);
+  release_memory(packing_.type);
+  release_memory(packing_.velocity);
+  release_memory(packing_.angular_velocity);
+  release_memory(packing_.density);
+  release_memory(packing_.fixed);
   packing_.bonds = Bonds{};
 
   neighbors_.set_skin(config_.skin_ratio * r_max);
@@ -258,10 +258,10 @@ const Material& Engine::params_of_type(int type) const {
 
 void Engine::update_mass(std::size_t k) {
   const double r = particles_.radius[k];
-  particles_.mass[k] = density_[k] * 4.0 / 3.0 * std::numbers::pi * r * r * r;
-  particles_.inertia[k] = 0.4 * particles_.mass[k] * r * r;
+  const double density = density_.empty() ? params_of_type(particles_.type[k]).density : density_[k];
+  particles_.mass[k] = density * 4.0 / 3.0 * std::numbers::pi * r * r * r;
   particles_.inverse_mass[k] = particles_.fixed[k] ? 0.0 : 1.0 / particles_.mass[k];
-  particles_.inverse_inertia[k] = particles_.fixed[k] ? 0.0 : 1.0 / particles_.inertia[k];
+  particles_.inverse_inertia[k] = particles_.fixed[k] ? 0.0 : 1.0 / sphere_inertia(particles_.mass[k], r);
 }
 
 void Engine::set_radius_of_type(int type, double radius) {
@@ -313,14 +313,14 @@ EngineMemory Engine::memory() const {
   EngineMemory m;
   const ParticleStore& P = particles_;
   m.particles = heap_bytes(P.position) + heap_bytes(P.velocity) + heap_bytes(P.angular_velocity) + heap_bytes(P.force) +
-                heap_bytes(P.torque) + heap_bytes(P.radius) + heap_bytes(P.mass) + heap_bytes(P.inertia) +
-                heap_bytes(P.inverse_mass) + heap_bytes(P.inverse_inertia) + heap_bytes(P.type) + heap_bytes(P.fixed) +
-                heap_bytes(damping_) + heap_bytes(original_index_) + heap_bytes(density_) + heap_bytes(wraps_) +
-                heap_bytes(stiffness_sum_) + heap_bytes(measure_energy_) + heap_bytes(measure_force_) +
-                heap_bytes(chunk_sums_) + heap_bytes(bond_first_);
+                heap_bytes(P.torque) + heap_bytes(P.radius) + heap_bytes(P.mass) + heap_bytes(P.inverse_mass) +
+                heap_bytes(P.inverse_inertia) + heap_bytes(P.type) + heap_bytes(P.fixed) + heap_bytes(type_damping_) +
+                heap_bytes(original_index_) + heap_bytes(density_) + heap_bytes(wraps_) + heap_bytes(stiffness_sum_) +
+                heap_bytes(measure_energy_) + heap_bytes(measure_force_) + heap_bytes(chunk_sums_) +
+                heap_bytes(bond_first_);
   const NeighborList::Memory list = neighbors_.memory();
   m.neighbor_list = list.per_particle_arrays;
-  m.listed_pairs = list.per_pair_arrays + heap_bytes(pair_owner_) + heap_bytes(pair_bonded_);
+  m.listed_pairs = list.per_pair_arrays + heap_bytes(pair_bonded_);
   std::visit([&](const auto& model) { m.contact_history = heap_bytes(model.history) + heap_bytes(model.wall_history); },
              model_);
   m.bonds = heap_bytes(bonds_.i) + heap_bytes(bonds_.j) + heap_bytes(bonds_.image) + heap_bytes(bonds_.material) +
@@ -328,8 +328,9 @@ EngineMemory Engine::memory() const {
   std::visit([&](const auto& model) { m.bonds += heap_bytes(model.history); }, bond_model_);
   for (const ThreadWork& w : work_) {
     m.bonds += heap_bytes(w.failed_bonds);
-    m.threads += heap_bytes(w.crossing_pairs) + heap_bytes(w.crossing_pair_results) + heap_bytes(w.crossing_pair_acts) +
-                 heap_bytes(w.crossing_bonds) + heap_bytes(w.crossing_bond_results);
+    m.threads += heap_bytes(w.crossing_pairs) + heap_bytes(w.crossing_pair_owners) +
+                 heap_bytes(w.crossing_pair_results) + heap_bytes(w.crossing_pair_acts) + heap_bytes(w.crossing_bonds) +
+                 heap_bytes(w.crossing_bond_results);
   }
   return m;
 }

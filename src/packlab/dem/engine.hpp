@@ -16,6 +16,7 @@
 #include <array>
 #include <chrono>
 #include <cstddef>
+#include <cstdint>
 #include <istream>
 #include <ostream>
 #include <string>
@@ -292,7 +293,8 @@ class Engine {
   // so that every particle receives its contributions in the order a single thread gives.
   struct ThreadWork {
     int particle_begin = 0, particle_end = 0;
-    std::vector<int> crossing_pairs;  // listed pairs, ascending
+    std::vector<int> crossing_pairs;        // listed pairs, ascending
+    std::vector<int> crossing_pair_owners;  // their particle i
     std::vector<Contribution> crossing_pair_results;
     std::vector<std::uint8_t> crossing_pair_acts;  // 1 if the pair acted (touched)
     std::vector<int> crossing_bonds;               // positions in bond_order_, ascending
@@ -314,13 +316,11 @@ class Engine {
   void tune_threads();
   void set_active_threads(int threads);
   void mark_bonded_pairs();
-  // Each listed pair's particle i (after every neighbour rebuild).
-  void fill_pair_owners();
   // Splits particles, pairs and bonds among the threads (after every neighbour rebuild and
   // every change of the thread count).
   void partition_work();
   template <class Law, bool OneType, bool Indirect>
-  void gather_pairs(ContactModel<Law>& model, const int* pairs, int start, int count, int skip_from,
+  void gather_pairs(ContactModel<Law>& model, const int* pairs, const int* owners, int start, int count, int skip_from,
                     const std::uint8_t* crossing_acts, int& crossing_seen, PairBlock<Law>& block);
   template <class Law, bool OneType, bool Measure>
   void contact_block(ContactModel<Law>& model, PairBlock<Law>& block);
@@ -352,21 +352,24 @@ class Engine {
   bool input_has_density_ = false, input_has_fixed_ = false;  // packing() gives them back
   EngineConfig config_;
   ParticleStore particles_;
-  std::vector<double> damping_;  // per particle alpha
+  std::vector<double> type_damping_;  // local damping alpha per particle type
   std::vector<int> original_index_;
-  std::vector<double> density_;  // per particle [kg/m^3]
+  // Per particle [kg/m^3] only when the input packing gives densities; empty otherwise (each
+  // type's density applies: issue #14, bytes per particle).
+  std::vector<double> density_;
   // Box lengths each particle was wrapped by since the input: unwrapped = position + wraps L.
   std::vector<std::array<int, 3>> wraps_;
   BondList bonds_;
-  std::vector<std::uint8_t> pair_bonded_;  // per neighbour pair: the contact law is off
+  // Per neighbour pair: the contact law is off (a bond holds the pair). Empty without bonds.
+  std::vector<std::uint8_t> pair_bonded_;
   std::size_t broken_bonds_ = 0;
   std::vector<BondBreak> breaks_;
   std::vector<Wall> walls_;
   std::vector<Vec3> wall_force_;  // per wall, last step
   NeighborList neighbors_;
-  std::vector<int> pair_owner_;  // per listed pair: its particle i
   // Bonds by the smaller of their two particle indices (their owner), then by bond index:
   // bond_order_[bond_first_[k] .. bond_first_[k + 1]) are the bonds owned by particle k.
+  // Both empty without bonds.
   std::vector<int> bond_order_, bond_first_;
   ContactModels model_;
   BondModels bond_model_;

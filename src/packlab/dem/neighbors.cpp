@@ -20,8 +20,8 @@ void Engine::refresh_neighbors() {
         model.history.swap(remapped);
       },
       model_);
+  neighbors_.release_history_map();
   mark_bonded_pairs();
-  fill_pair_owners();
   partition_work();
 }
 
@@ -58,6 +58,7 @@ int Engine::listed_pair_of(std::size_t b) const {
 }
 
 void Engine::mark_bonded_pairs() {
+  if (bonds_.i.empty()) return;  // pair_bonded_ stays empty: no pair is held
   pair_bonded_.assign(neighbors_.pair_count(), 0);
   for (std::size_t b = 0; b < bonds_.i.size(); ++b) {
     if (bonds_.state[b] != 0) continue;

@@ -46,20 +46,14 @@ int chunk_count(int n) { return (n + chunk_size - 1) / chunk_size; }
 
 }  // namespace
 
-void Engine::fill_pair_owners() {
-  const int n = static_cast<int>(particles_.size());
-  const auto& first = neighbors_.first_pairs();
-  pair_owner_.resize(neighbors_.partner().size());
-  for (int i = 0; i < n; ++i) std::fill(pair_owner_.begin() + first[i], pair_owner_.begin() + first[i + 1], i);
-}
-
 void Engine::partition_work() {
   const int n = static_cast<int>(particles_.size());
   const int T = threads_;
   const auto& first = neighbors_.first_pairs();
   const auto& partner = neighbors_.partner();
   // Ranges holding about equal work: a listed pair counts 1, a bond 2 (its law does more).
-  auto work_before = [&](int i) { return static_cast<long>(first[i]) + 2L * bond_first_[i]; };
+  const bool any_bonds = !bond_first_.empty();
+  auto work_before = [&](int i) { return static_cast<long>(first[i]) + (any_bonds ? 2L * bond_first_[i] : 0L); };
   const long total = work_before(n);
   // Never shrunk: switching between one thread and more (adapt_threads) keeps every thread's
   // lists and their capacity; only the first T are used.
@@ -75,11 +69,18 @@ void Engine::partition_work() {
       while (i < n && work_before(i) < target) ++i;
     w.particle_end = i;
     w.crossing_pairs.clear();
-    for (int p = first[w.particle_begin]; p < first[w.particle_end]; ++p)
-      if (partner[p] >= w.particle_end) w.crossing_pairs.push_back(p);
+    w.crossing_pair_owners.clear();
+    for (int owner = w.particle_begin; owner < w.particle_end; ++owner)
+      for (int p = first[owner]; p < first[owner + 1]; ++p)
+        if (partner[p] >= w.particle_end) {
+          w.crossing_pairs.push_back(p);
+          w.crossing_pair_owners.push_back(owner);
+        }
     w.crossing_pair_results.resize(w.crossing_pairs.size());
     w.crossing_pair_acts.resize(w.crossing_pairs.size());
     w.crossing_bonds.clear();
+    w.crossing_bond_results.clear();
+    if (!any_bonds) continue;
     for (int q = bond_first_[w.particle_begin]; q < bond_first_[w.particle_end]; ++q) {
       const auto b = static_cast<std::size_t>(bond_order_[q]);
       if (std::max(bonds_.i[b], bonds_.j[b]) >= w.particle_end) w.crossing_bonds.push_back(q);
@@ -117,23 +118,26 @@ struct PairBlock {
 };
 
 // Gathers the acting pairs among `count` listed pairs (pairs[start + k] if Indirect, else
-// start + k) into the block, in list order, without a branch on whether a pair acts (the
+// start + k; their particles i in owners[start + k] if Indirect, else owners[k]) into the
+// block, in list order, without a branch on whether a pair acts (the
 // entry is written and kept only if it does). A pair out of range ends its history. Pairs
 // whose j >= skip_from were evaluated before (crossing pairs): their history is left alone
 // and they are listed, flagged, only if they acted, so that their kept result is added at
 // their place in the order.
 template <class Law, bool OneType, bool Indirect>
-void Engine::gather_pairs(ContactModel<Law>& model, const int* pairs, int start, int count, int skip_from,
-                          const std::uint8_t* crossing_acts, int& crossing_seen, PairBlock<Law>& block) {
+void Engine::gather_pairs(ContactModel<Law>& model, const int* pairs, const int* owners, int start, int count,
+                          int skip_from, const std::uint8_t* crossing_acts, int& crossing_seen, PairBlock<Law>& block) {
   const Vec3* __restrict x = particles_.position.data();
   const Vec3* __restrict v = particles_.velocity.data();
   const Vec3* __restrict w = particles_.angular_velocity.data();
   const double* __restrict rad = particles_.radius.data();
   const int* __restrict type = particles_.type.data();
   const double* __restrict inverse_mass = particles_.inverse_mass.data();
-  const int* __restrict owner = pair_owner_.data();
+  const int* __restrict owner = Indirect ? owners + start : owners;
   const int* __restrict partner = neighbors_.partner().data();
   const std::uint8_t* __restrict image = neighbors_.image().data();
+  // Without bonds the flags are not kept (none is set).
+  const bool any_bonded = !pair_bonded_.empty();
   const std::uint8_t* __restrict bonded = pair_bonded_.data();
   const Vec3* __restrict offsets = &neighbors_.image_offset(0);
   auto* __restrict history = model.history.data();
@@ -144,7 +148,7 @@ void Engine::gather_pairs(ContactModel<Law>& model, const int* pairs, int start,
   int m = 0;
   for (int k = 0; k < count; ++k) {
     const int p = Indirect ? pairs[start + k] : start + k;
-    const int i = owner[p], j = partner[p];
+    const int i = owner[k], j = partner[p];
     const Vec3 d = x[j] + offsets[image[p]] - x[i];
     const double dist2 = norm2(d);
     const double ri = rad[i], rj = rad[j];
@@ -154,7 +158,7 @@ void Engine::gather_pairs(ContactModel<Law>& model, const int* pairs, int start,
     // A crossing pair's flag is read only for crossing pairs (crossing_seen counts them).
     const bool acted_before = before && crossing_acts[before ? crossing_seen : 0];
     crossing_seen += before;
-    const bool acts = (dist2 < cutoff * cutoff) & (bonded[p] == 0) & !before;
+    const bool acts = (dist2 < cutoff * cutoff) & (!any_bonded || bonded[p] == 0) & !before;
     block.pair[m] = p;
     block.owner[m] = i;
     block.other[m] = j;
@@ -355,12 +359,14 @@ void Engine::pair_forces(ContactModel<Law>& model, Totals& totals) {
     const std::uint8_t* crossing_acts = work.crossing_pair_acts.empty() ? &no_crossing : work.crossing_pair_acts.data();
     int crossing_seen = 0;
     // Gathers and evaluates one block of listed pairs.
-    auto run_block = [&]<bool Indirect>(const int* list, int start, int count, int skip_from) {
+    auto run_block = [&]<bool Indirect>(const int* list, const int* owners, int start, int count, int skip_from) {
       if (one_type) {
-        gather_pairs<Law, true, Indirect>(model, list, start, count, skip_from, crossing_acts, crossing_seen, block);
+        gather_pairs<Law, true, Indirect>(model, list, owners, start, count, skip_from, crossing_acts, crossing_seen,
+                                          block);
         contact_block<Law, true, Measure>(model, block);
       } else {
-        gather_pairs<Law, false, Indirect>(model, list, start, count, skip_from, crossing_acts, crossing_seen, block);
+        gather_pairs<Law, false, Indirect>(model, list, owners, start, count, skip_from, crossing_acts, crossing_seen,
+                                           block);
         contact_block<Law, false, Measure>(model, block);
       }
       for (int c = 0; c < block.count; ++c)
@@ -389,7 +395,8 @@ void Engine::pair_forces(ContactModel<Law>& model, Totals& totals) {
       std::fill(work.crossing_pair_acts.begin(), work.crossing_pair_acts.end(), 0);
       for (int s = 0; s < crossing; s += capacity) {
         const int count = std::min(capacity, crossing - s);
-        run_block.template operator()<true>(work.crossing_pairs.data(), s, count, INT_MAX);
+        run_block.template operator()<true>(work.crossing_pairs.data(), work.crossing_pair_owners.data(), s, count,
+                                            INT_MAX);
         // The acting ones, in list order: find each one's place among the crossing pairs.
         int k = s;
         for (int c = 0; c < block.count; ++c) {
@@ -426,9 +433,17 @@ void Engine::pair_forces(ContactModel<Law>& model, Totals& totals) {
     }
     std::size_t crossing_index = 0;
     const int pairs_end = first[end];
+    // Each listed pair's particle i, walked along with the blocks (not stored per pair: issue
+    // #14, bytes per particle).
+    int block_owner[capacity];
+    int owner_now = begin;
     for (int p0 = first[begin]; p0 < pairs_end; p0 += capacity) {
       const int count = std::min(capacity, pairs_end - p0);
-      run_block.template operator()<false>(nullptr, p0, count, end);
+      for (int k = 0; k < count; ++k) {
+        while (first[owner_now + 1] <= p0 + k) ++owner_now;
+        block_owner[k] = owner_now;
+      }
+      run_block.template operator()<false>(nullptr, block_owner, p0, count, end);
       for (int c = 0; c < block.count; ++c) {
         const int i = block.owner[c], j = block.other[c];
         if (block.evaluated_before[c]) {
@@ -581,13 +596,15 @@ void Engine::integrate(Totals& totals) {
   auto& P = particles_;
   const int chunks = chunk_count(n);
   if constexpr (Measure) chunk_sums_.assign(3 * static_cast<std::size_t>(chunks), 0.0);
+  const double* __restrict damping = type_damping_.data();
+  const int* __restrict type = P.type.data();
 #pragma omp parallel for num_threads(threads_) schedule(static)
   for (int c = 0; c < chunks; ++c) {
     double kinetic = 0.0, unbalanced = 0.0, free_count = 0.0;
     for (int i = c * chunk_size; i < std::min(n, (c + 1) * chunk_size); ++i) {
       // Fixed particles have zero inverse mass and inertia: they keep zero velocity without a
       // branch, so the loop vectorizes.
-      const double alpha = damping_[i];
+      const double alpha = damping[type[i]];
       const Vec3 f = apply_local_damping(P.force[i], P.velocity[i], alpha);
       const Vec3 m = apply_local_damping(P.torque[i], P.angular_velocity[i], alpha);
       const Vec3 dv = (P.inverse_mass[i] * dt) * f;
@@ -596,7 +613,7 @@ void Engine::integrate(Totals& totals) {
         if (!P.fixed[i]) {
           const Vec3 v_sync = P.velocity[i] + 0.5 * dv;
           const Vec3 w_sync = P.angular_velocity[i] + 0.5 * dw;
-          kinetic += 0.5 * (P.mass[i] * norm2(v_sync) + P.inertia[i] * norm2(w_sync));
+          kinetic += 0.5 * (P.mass[i] * norm2(v_sync) + sphere_inertia(P.mass[i], P.radius[i]) * norm2(w_sync));
           unbalanced += norm(P.force[i]);
           free_count += 1.0;
         }

@@ -251,9 +251,8 @@ void Vem::apply_mass_scaling() {
     const double r = P.radius[k];
     const double m = std::max(sphere_mass(params_.void_material.density, r), floor);
     P.mass[k] = m;
-    P.inertia[k] = 0.4 * m * r * r;
     P.inverse_mass[k] = 1.0 / m;
-    P.inverse_inertia[k] = 1.0 / P.inertia[k];
+    P.inverse_inertia[k] = 1.0 / sphere_inertia(m, r);
   }
   engine_->masses_changed();
 }

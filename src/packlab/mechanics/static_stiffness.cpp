@@ -10,6 +10,7 @@
 #include <stdexcept>
 
 #include "packlab/core/error.hpp"
+#include "packlab/core/memory.hpp"
 
 namespace packlab::mechanics {
 
@@ -288,7 +289,7 @@ StiffnessAssembly::StiffnessAssembly(const StaticLinks& links, std::span<const s
   }
   neighbor_.reserve(static_cast<std::size_t>(neighbor_start_.back()));
   for (const auto& l : larger) neighbor_.insert(neighbor_.end(), l.begin(), l.end());
-  larger = {};
+  release_memory(larger);
   link_block_.assign(links.size(), -1);
   for (std::size_t k = 0; k < links.size(); ++k) {
     const int a = free_index_[static_cast<std::size_t>(links.i[k])],
