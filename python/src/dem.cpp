@@ -117,18 +117,20 @@ void bind_dem(py::module_& m) {
         property_docs.back().c_str(), [p](const Material& t) { return p.get(t); },
         [p](Material& t, double v) { p.set(t, v); }, property_docs[property_docs.size() - 2].c_str());
   }
-  material
-      .def("__repr__", [](const Material& t) {
-        return fmt::format("Material(normal_stiffness={:g}, shear_stiffness={:g}, friction={:g}, density={:g}, "
-                           "damping={:g})",
-                           t.normal_stiffness, t.shear_stiffness, t.friction, t.density, t.damping);
-      });
+  material.def("__repr__", [](const Material& t) {
+    return fmt::format(
+        "Material(normal_stiffness={:g}, shear_stiffness={:g}, friction={:g}, density={:g}, "
+        "damping={:g})",
+        t.normal_stiffness, t.shear_stiffness, t.friction, t.density, t.damping);
+  });
 
   using BondParams = dem::ContactBond::Params;
   py::class_<BondParams>(m, "BondMaterial",
                          "Parameters of the PFC contact bond: normal_stiffness, shear_stiffness [N/m], "
                          "normal_strength (tension), shear_strength [N].")
-      .def(py::init([](double kn, double ks, double fn, double fs) { return BondParams{kn, ks, fn, fs}; }),
+      .def(py::init([](double kn, double ks, double fn, double fs) {
+             return BondParams{kn, ks, fn, fs};
+           }),
            py::kw_only(), py::arg("normal_stiffness"), py::arg("shear_stiffness"), py::arg("normal_strength"),
            py::arg("shear_strength"))
       .def_readwrite("normal_stiffness", &BondParams::normal_stiffness, "k_n [N/m]")
@@ -150,8 +152,7 @@ void bind_dem(py::module_& m) {
       .def_readonly("broken_bonds", &Diagnostics::broken_bonds)
       .def("__repr__", [](const Diagnostics& d) {
         return fmt::format("<Diagnostics step {}: unbalanced {:.3g}, CN {:.3f}, kinetic {:.3g} J, strain {:.3g} J>",
-                           d.step, d.unbalanced_force_ratio, d.mean_coordination, d.kinetic_energy,
-                           d.strain_energy);
+                           d.step, d.unbalanced_force_ratio, d.mean_coordination, d.kinetic_energy, d.strain_energy);
       });
 
   m.def("contact_law_names", &dem::contact_law_names, "Names of the registered contact laws.");
@@ -166,8 +167,8 @@ BondMaterial (one per bond material), required when the packing has intact bonds
 )doc" + keywords_doc(io::engine_options(engine_defaults));
   py::class_<Engine>(m, "Engine", engine_doc.c_str())
       .def(py::init([](const Packing& packing, std::optional<std::vector<Material>> materials,
-                       const std::string& bond_law,
-                       std::optional<std::vector<dem::ContactBond::Params>> bond_materials, const py::kwargs& kwargs) {
+                       const std::string& bond_law, std::optional<std::vector<dem::ContactBond::Params>> bond_materials,
+                       const py::kwargs& kwargs) {
              io::EngineSettings settings;
              apply_keywords(io::engine_options(settings), kwargs, "Engine");
              EngineConfig c = settings.config();
@@ -204,14 +205,16 @@ BondMaterial (one per bond material), required when the packing has intact bonds
            "safety * min over particles of sqrt(m_i / k_i) for the current particles [s].")
       .def_property_readonly("step_count", &Engine::step_count)
       .def_property_readonly("time", &Engine::time, "[s]")
-      .def_property_readonly("threads", &Engine::threads)
+      .def_property_readonly("threads", &Engine::threads, "The thread count as configured (0 resolved).")
+      .def_property_readonly("active_threads", &Engine::active_threads,
+                             "The thread count of the next step: 1 or `threads` (adapt_threads: an adapting engine "
+                             "starts at one and goes up while probes find more threads faster).")
       .def_property_readonly("intact_bonds", &Engine::intact_bonds)
       .def("__len__", &Engine::particle_count)
       .def("packing", &Engine::packing,
            "The packing (original particle order) with current positions and velocities (a copy).")
-      .def(
-          "set_radius_of_type", &Engine::set_radius_of_type, py::arg("type"), py::arg("radius"),
-          "Sets the radius [m] of every particle of `type` (mass follows at constant density).")
+      .def("set_radius_of_type", &Engine::set_radius_of_type, py::arg("type"), py::arg("radius"),
+           "Sets the radius [m] of every particle of `type` (mass follows at constant density).")
       .def(
           "set_radii", [](Engine& e, py::object r) { e.set_radii(from_numpy<double>(r, "radii")); }, py::arg("radii"),
           "Sets every radius [m] (packing order).")
@@ -256,15 +259,22 @@ force (M x 3, force on j [N]).)doc")
           py::arg("velocity") = std::array<double, 3>{0, 0, 0},
           "Adds a plane wall (point [m], unit normal into the particles' side, velocity [m/s]); returns its index.")
       .def(
-          "set_wall_velocity", [](Engine& e, std::size_t k, std::array<double, 3> v) { e.wall(k).velocity = to_vec3(v); },
-          py::arg("wall"), py::arg("velocity"), "Sets the velocity [m/s] of wall `wall`.")
+          "set_wall_velocity",
+          [](Engine& e, std::size_t k, std::array<double, 3> v) { e.wall(k).velocity = to_vec3(v); }, py::arg("wall"),
+          py::arg("velocity"), "Sets the velocity [m/s] of wall `wall`.")
       .def(
-          "wall_position", [](const Engine& e, std::size_t k) { return py::make_tuple(e.wall(k).point.x, e.wall(k).point.y, e.wall(k).point.z); }, py::arg("wall"),
-          "A point on the wall now [m].")
+          "wall_position",
+          [](const Engine& e, std::size_t k) {
+            return py::make_tuple(e.wall(k).point.x, e.wall(k).point.y, e.wall(k).point.z);
+          },
+          py::arg("wall"), "A point on the wall now [m].")
       .def(
-          "wall_force", [](const Engine& e, std::size_t k) { const Vec3& f = e.wall_force(k);
-            return py::make_tuple(f.x, f.y, f.z); }, py::arg("wall"),
-          "Force the particles exerted on wall `wall` during the last step [N].")
+          "wall_force",
+          [](const Engine& e, std::size_t k) {
+            const Vec3& f = e.wall_force(k);
+            return py::make_tuple(f.x, f.y, f.z);
+          },
+          py::arg("wall"), "Force the particles exerted on wall `wall` during the last step [N].")
       .def_property_readonly("wall_count", &Engine::wall_count)
       .def(
           "save_state",

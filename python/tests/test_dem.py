@@ -95,6 +95,19 @@ def test_engine_forces_stress_and_state():
     assert np.array_equal(e2.packing().positions, x10)
 
 
+def test_adapt_threads_keyword():
+    """An adapting engine starts at one thread; adapt_threads=False runs the count asked for."""
+    p = compressed_lattice()
+    adapting = packlab.Engine(p, normal_stiffness=100, shear_stiffness=10, threads=2)
+    fixed = packlab.Engine(p, normal_stiffness=100, shear_stiffness=10, threads=2, adapt_threads=False)
+    assert (adapting.threads, adapting.active_threads) == (2, 1)
+    assert (fixed.threads, fixed.active_threads) == (2, 2)
+    adapting.run(20)
+    fixed.run(20)
+    # The results do not depend on the thread count.
+    assert np.array_equal(adapting.packing().positions, fixed.packing().positions)
+
+
 def test_bonded_model_holds_under_tension():
     p = packlab.generate_lattice(type="sc", cells=(2, 2, 2), radius=0.5)
     c = packlab.find_contacts(p)

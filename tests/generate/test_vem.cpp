@@ -169,7 +169,9 @@ TEST(Vem, CheckpointResumeEqualsUninterruptedRun) {
   ASSERT_EQ(second->stage(), VemStage::expansion);
   std::stringstream s2;
   second->save_checkpoint(s2);
-  auto third = Vem::resume(s2);
+  auto third = Vem::resume(s2, 0, false);  // adapt_threads changes no result
+  EXPECT_TRUE(second->engine().config().adapt_threads);
+  EXPECT_FALSE(third->engine().config().adapt_threads);
   third->run();
   ASSERT_TRUE(third->finished());
   EXPECT_EQ(third->total_steps(), total);
@@ -338,7 +340,7 @@ TEST(VemCli, WritesPackingCurveReportAndResumesFinishedRun) {
   EXPECT_NE(csv.find("q,cn,phi_total,strain_energy,kinetic_energy,steps"), std::string::npos);
   // 0.05 .. 0.30: six rows.
   EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 3 + 6);
-  const auto again = test::run_packlab("generate vem --resume " + out + " --no-plots --quiet");
+  const auto again = test::run_packlab("generate vem --resume " + out + " --adapt-threads=false --no-plots --quiet");
   ASSERT_EQ(again.exit_code, 0) << again.output;
   EXPECT_EQ(read_text(out + "/cn_curve.csv"), csv);
 }

@@ -7,6 +7,8 @@
 #include "packlab/core/error.hpp"
 #include "packlab/io/config.hpp"
 #include "packlab/io/options.hpp"
+#include "packlab/mechanics/oscillatory_shear.hpp"
+#include "packlab/mechanics/uniaxial_compression.hpp"
 
 using namespace packlab;
 
@@ -231,4 +233,31 @@ TEST(ConfigSchema, KeysMissingFromASavedRecordTakeTheValueOldRunsRanWith) {
   EXPECT_THROW(integers.when_not_saved(99999999999), std::logic_error);
   EXPECT_NO_THROW(integers.when_not_saved(4));
   EXPECT_EQ(s.threads, 0);  // declaring it sets nothing
+}
+
+// adapt_threads (dem::EngineConfig::adapt_threads) is a key of every command that runs the
+// explicit engine, default on, and reaches the engine's configuration.
+TEST(ConfigSchema, AdaptThreadsReachesEveryEngineRun) {
+  test::TempDir dir("config");
+  const std::string off = write(dir, "adapt_threads = false\nthreads = 2\n");
+  io::RelaxRun relax;
+  EXPECT_TRUE(relax.config().adapt_threads);
+  io::relax_options(relax).read_file(off);
+  EXPECT_FALSE(relax.config().adapt_threads);
+  EXPECT_EQ(relax.config().threads, 2);
+  mechanics::UniaxialCompressionSetup compress;
+  EXPECT_TRUE(mechanics::compression_engine_config(compress.options).adapt_threads);
+  io::compression_test_options(compress).read_file(off);
+  EXPECT_FALSE(mechanics::compression_engine_config(compress.options).adapt_threads);
+  io::ShearTestRun shear;
+  EXPECT_TRUE(mechanics::shear_engine_config(shear.test).adapt_threads);
+  io::shear_test_options(shear).read_file(off);
+  EXPECT_FALSE(mechanics::shear_engine_config(shear.test).adapt_threads);
+  generate::VemParams vem;
+  EXPECT_TRUE(vem.adapt_threads);
+  io::vem_options(vem).read_file(off);
+  EXPECT_FALSE(vem.adapt_threads);
+  // Like every boolean key: a value of another type names the key.
+  EXPECT_NE(error_of(io::relax_options(relax), write(dir, "adapt_threads = 2\n")).find("adapt_threads"),
+            std::string::npos);
 }

@@ -47,7 +47,7 @@ SavedRun read_command_checkpoint(const std::filesystem::path& dir, const io::Con
   try {
     std::uint64_t magic = 0;
     binary::read(in, magic, "header");
-    if (magic != checkpoint_magic) fail_input("not a packlab checkpoint of this version (bad header)");
+    binary::require_header(magic, checkpoint_magic, "not a packlab checkpoint");
     SavedRun run{"", binary::read_checked(in, "the saved run")};
     std::string command;
     binary::read_string(run.state, command, "command");
@@ -68,14 +68,14 @@ SavedRun read_command_checkpoint(const std::filesystem::path& dir, const io::Con
 
 SavedRun resume_saved_run(const OptionFlags& flags, const std::string& dir, const std::string& in,
                           const std::string& out) {
-  std::string refused = flags.config_file().empty() ? flags.first_given({"threads"}) : "--config";
+  std::string refused = flags.config_file().empty() ? flags.first_given({"threads", "adapt_threads"}) : "--config";
   if (refused.empty() && !in.empty()) refused = "the input file";
   if (!refused.empty())
     fail_input(fmt::format("{} cannot be combined with --resume: the run continues with its saved settings", refused));
   if (!out.empty() && std::filesystem::path(out) != std::filesystem::path(dir))
     fail_input("--out: a resumed run writes into its own folder (--resume DIR); drop --out");
   SavedRun run = read_command_checkpoint(dir, flags.schema());
-  flags.apply();  // --threads, the only flag left
+  flags.apply();  // --threads and --adapt-threads, the only flags left
   return run;
 }
 

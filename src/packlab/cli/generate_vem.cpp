@@ -274,9 +274,9 @@ void add_generate_vem(CLI::App& generate) {
     RunSettings& settings = opt->settings;
     std::filesystem::path dir;
     if (!opt->resume.empty()) {
-      // The method's parameters are the saved ones; only the thread count and the run's own
+      // The method's parameters are the saved ones; only the threads and the run's own
       // settings may change.
-      std::string refused = given("--config") ? "--config" : opt->method->first_given({"threads"});
+      std::string refused = given("--config") ? "--config" : opt->method->first_given({"threads", "adapt_threads"});
       if (!refused.empty())
         fail_input(
             fmt::format("{} cannot be combined with --resume: the run continues with its saved parameters", refused));
@@ -286,7 +286,9 @@ void add_generate_vem(CLI::App& generate) {
       std::ifstream in(dir / "checkpoint.bin", std::ios::binary);
       if (!in) fail_input(fmt::format("--resume = {}: no checkpoint.bin in this folder", opt->resume));
       opt->method->apply();
-      vem = generate::Vem::resume(in, given("--threads") ? opt->params.threads : 0);
+      vem = generate::Vem::resume(
+          in, given("--threads") ? opt->params.threads : 0,
+          given("--adapt-threads") ? std::optional<bool>(opt->params.adapt_threads) : std::nullopt);
       std::uint64_t magic = 0;
       std::uint8_t plots = 1;
       binary::read(in, magic, "command settings");

@@ -15,6 +15,32 @@
 
 namespace packlab::binary {
 
+// A checkpoint's eight-byte tag as text where it is printable (e.g. "PDEMECK4"), else in hex.
+inline std::string header_tag(std::uint64_t magic) {
+  std::string text;
+  bool printable = true;
+  for (int b = 0; b < 8; ++b) {
+    const char c = static_cast<char>((magic >> (8 * b)) & 0xFF);
+    printable = printable && c >= 0x20 && c < 0x7F;
+    text += c;
+  }
+  if (printable) return text;
+  static constexpr char digits[] = "0123456789abcdef";
+  std::string hex = "0x";
+  for (int b = 15; b >= 0; --b) hex += digits[(magic >> (4 * b)) & 0xF];
+  return hex;
+}
+
+// InputError unless `found` is the `expected` tag: "<refusal> of this version (header X, this
+// version writes and reads Y)" and what to do about another version's state.
+inline void require_header(std::uint64_t found, std::uint64_t expected, const std::string& refusal) {
+  if (found == expected) return;
+  fail_input(refusal + " of this version (header " + header_tag(found) + ", this version writes and reads " +
+             header_tag(expected) +
+             "): start the run again without resuming, or resume it with the version that "
+             "wrote it");
+}
+
 template <class T>
 void write(std::ostream& out, const T& value) {
   static_assert(std::is_trivially_copyable_v<T>);
@@ -32,7 +58,8 @@ template <class T>
 void write_vector(std::ostream& out, const std::vector<T>& v) {
   static_assert(std::is_trivially_copyable_v<T>);
   write(out, static_cast<std::uint64_t>(v.size()));
-  if (!v.empty()) out.write(reinterpret_cast<const char*>(v.data()), static_cast<std::streamsize>(v.size() * sizeof(T)));
+  if (!v.empty())
+    out.write(reinterpret_cast<const char*>(v.data()), static_cast<std::streamsize>(v.size() * sizeof(T)));
 }
 
 template <class T>

@@ -12,14 +12,6 @@ namespace {
 // bond states, scalar bond torsion.)
 constexpr std::uint64_t checkpoint_magic = 0x344B43454D454450ULL;
 
-// The eight header bytes as text when they are an engine checkpoint's tag ("PDEMECK3"), else
-// in hex: what the refusal of another version's checkpoint names.
-std::string header_name(std::uint64_t magic) {
-  std::string text;
-  for (int b = 0; b < 8; ++b) text += static_cast<char>((magic >> (8 * b)) & 0xFF);
-  if (text.rfind("PDEMECK", 0) == 0 && text[7] >= '0' && text[7] <= '9') return text;
-  return fmt::format("0x{:016x}", magic);
-}
 }  // namespace
 
 void Engine::save_state(std::ostream& out) const {
@@ -57,12 +49,7 @@ void Engine::save_state(std::ostream& out) const {
 void Engine::load_state(std::istream& in) {
   std::uint64_t magic = 0, n = 0;
   binary::read(in, magic, "header");
-  if (magic != checkpoint_magic)
-    fail_input(
-        fmt::format("checkpoint: not a packlab engine state of this version (header {}, this version writes and "
-                    "reads {}): start the run again without resuming, or resume it with the version that "
-                    "wrote it",
-                    header_name(magic), header_name(checkpoint_magic)));
+  binary::require_header(magic, checkpoint_magic, "checkpoint: not a packlab engine state");
   binary::read(in, n, "particle count");
   if (n != particles_.size())
     fail_input(fmt::format("checkpoint holds {} particles, the engine {}", n, particles_.size()));

@@ -18,7 +18,8 @@ namespace packlab::generate {
 
 namespace {
 
-constexpr std::uint64_t vem_checkpoint_magic = 0x3530504B434D4556ULL;  // "VEMCKP05": checksummed
+// "VEMCKP06": checksummed, adapt_threads saved (05: without it).
+constexpr std::uint64_t vem_checkpoint_magic = 0x3630504B434D4556ULL;
 constexpr int structural_type = particle_type::structural;
 constexpr int void_type = particle_type::void_particle;
 
@@ -78,6 +79,7 @@ void write_params(std::ostream& out, const VemParams& p) {
   binary::write(out, p.time_step_safety);
   binary::write(out, p.skin);
   binary::write(out, p.threads);
+  binary::write(out, static_cast<std::uint8_t>(p.adapt_threads));
   binary::write(out, p.seed);
 }
 
@@ -108,6 +110,9 @@ VemParams read_params(std::istream& in) {
   binary::read(in, p.time_step_safety, "time_step_safety");
   binary::read(in, p.skin, "skin");
   binary::read(in, p.threads, "threads");
+  std::uint8_t adapt_threads = 1;
+  binary::read(in, adapt_threads, "adapt_threads");
+  p.adapt_threads = adapt_threads != 0;
   binary::read(in, p.seed, "seed");
   return p;
 }
@@ -212,6 +217,7 @@ dem::EngineConfig Vem::engine_config() const {
   c.time_step_safety = params_.time_step_safety;
   c.skin_ratio = params_.skin / std::max(1.0, params_.void_radius_ratio);
   c.threads = params_.threads;
+  c.adapt_threads = params_.adapt_threads;
   return c;
 }
 
@@ -378,14 +384,14 @@ void Vem::save_state(std::ostream& out) const {
   engine_->save_state(out);
 }
 
-std::unique_ptr<Vem> Vem::resume(std::istream& checkpoint, int threads) {
+std::unique_ptr<Vem> Vem::resume(std::istream& checkpoint, int threads, std::optional<bool> adapt_threads) {
   std::uint64_t magic = 0;
   binary::read(checkpoint, magic, "header");
-  if (magic != vem_checkpoint_magic)
-    fail_input("checkpoint: not a packlab VEM checkpoint of this version (bad header)");
+  binary::require_header(magic, vem_checkpoint_magic, "checkpoint: not a packlab VEM checkpoint");
   std::istringstream in = binary::read_checked(checkpoint, "the VEM state");
   VemParams params = read_params(in);
   if (threads > 0) params.threads = threads;
+  if (adapt_threads) params.adapt_threads = *adapt_threads;
   std::unique_ptr<Vem> vem(new Vem(params, ResumeTag{}));
   binary::read_random(in, vem->rng_);
   std::int32_t stage = 0, stop = 0;

@@ -52,6 +52,7 @@
 #include <functional>
 #include <istream>
 #include <memory>
+#include <optional>
 #include <ostream>
 #include <string>
 #include <vector>
@@ -91,6 +92,7 @@ struct VemParams {
   double time_step_safety = 0.8;                 // fraction of sqrt(m/k) [-]
   double skin = 0.2;                             // Verlet skin / r_S [-]
   int threads = 0;                               // OpenMP threads, 0 = all; results are bitwise reproducible per count
+  bool adapt_threads = true;                     // dem::EngineConfig::adapt_threads
   std::uint64_t seed = 1;
 
   // InputError naming the first bad key (impossible Phi_S, box too small for max_q, ...).
@@ -135,8 +137,10 @@ class Vem {
   // Places the particles (draws from a Random seeded with params.seed) and sets up the engine.
   explicit Vem(const VemParams& params);
   // Continues from a checkpoint written by save_checkpoint(); `threads` > 0 overrides the saved
-  // thread count (the run then stays valid but is no longer bitwise equal to one without the break).
-  static std::unique_ptr<Vem> resume(std::istream& checkpoint, int threads = 0);
+  // thread count (the run then stays valid but is no longer bitwise equal to one without the break),
+  // `adapt_threads` the saved dem::EngineConfig::adapt_threads (it changes no result).
+  static std::unique_ptr<Vem> resume(std::istream& checkpoint, int threads = 0,
+                                     std::optional<bool> adapt_threads = std::nullopt);
   ~Vem();
   Vem(const Vem&) = delete;
   Vem& operator=(const Vem&) = delete;

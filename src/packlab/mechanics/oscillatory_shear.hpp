@@ -84,6 +84,7 @@ struct OscillatoryShearOptions {
   bool settle = true;
   dem::ZeroVelocityRelaxOptions relax_options{};
   int threads = 1;
+  bool adapt_threads = true;  // dynamic solver: dem::EngineConfig::adapt_threads
   // Which orientations to run, as shear_orientations() reads them: "all", "x,z", "z:x,x:y".
   std::string orientations = "all";
   // "dynamic": the oscillating plate above; "static": one linear solve per orientation with the

@@ -102,6 +102,7 @@ dem::EngineConfig shear_engine_config(const OscillatoryShearOptions& o) {
       factor * o.normal_stiffness, factor * o.shear_stiffness, o.normal_strength, o.shear_strength}};
   c.time_step_safety = o.time_step_safety;
   c.threads = o.threads;
+  c.adapt_threads = o.adapt_threads;
   return c;
 }
 

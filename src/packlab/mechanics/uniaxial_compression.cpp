@@ -71,6 +71,7 @@ dem::EngineConfig compression_engine_config(const UniaxialCompressionOptions& op
   config.time_step = options.time_step;
   config.time_step_safety = options.time_step_safety;
   config.threads = options.threads;
+  config.adapt_threads = options.adapt_threads;
   return config;
 }
 

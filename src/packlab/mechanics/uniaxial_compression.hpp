@@ -98,6 +98,7 @@ struct UniaxialCompressionOptions {
   double modulus_lower = 0.05;           // see the header comment
   double modulus_window = 0.25;
   int threads = 1;
+  bool adapt_threads = true;  // dynamic solver: dem::EngineConfig::adapt_threads
   // "dynamic": the explicit DEM run above; "static": the quasi-static solver with sequential
   // linear analysis (mechanics/static_loading.hpp, docs/static-solver.md).
   std::string solver = "dynamic";
