@@ -54,6 +54,14 @@ TEST(EngineState, CheckpointWithInputDensitiesContinuesBitwiseIdentically) {
   p.density.assign(p.size(), 1000.0);
   for (std::size_t i = 0; i < p.size(); i += 3) p.density[i] = 2500.0;
   test::expect_checkpoint_continues_bitwise(p, two_type_config(), 200);
+  // A state of the packing with densities does not load into an engine of the one without.
+  std::stringstream state;
+  Engine(p, two_type_config()).save_state(state);
+  Packing plain = p;
+  plain.density.clear();
+  Engine other(plain, two_type_config());
+  const std::string message = test::error_of([&] { other.load_state(state); });
+  EXPECT_NE(message.find("per-particle densities"), std::string::npos) << message;
 }
 
 TEST(EngineState, DamagedOrForeignCheckpointIsAnInputError) {

@@ -8,7 +8,7 @@
 //    and the strength ratio E_macro / strength (the paper: 3.35 and ~35).
 // Writes DIR/report.json, DIR/calibration.csv and the compression outputs of the final
 // parameters in DIR/final/.
-// packlab calibrate compress --resume DIR [--threads T]
+// packlab calibrate compress --resume DIR [--threads T] [--adapt-threads=false]
 // DIR/checkpoint.bin is written after every simulation and every --checkpoint-seconds within
 // one (dynamic solver); --resume DIR replays the finished simulations, goes on with the one
 // that was running and ends with the same files as an uninterrupted run.

@@ -3,8 +3,9 @@
 // the mean storage modulus G' of the structure matches the target (doh-elastic-properties §3.1:
 // k_n was calibrated in 50-150 N/m); Newton with a finite-difference derivative
 // (mechanics::calibrate). Writes DIR/calibration.csv (every evaluation) and DIR/report.json.
-// packlab calibrate shear --resume DIR [--threads T]: DIR/checkpoint.bin is written after every
-// simulation and every --checkpoint-seconds within one (dynamic solver); the resumed run relaxes
+// packlab calibrate shear --resume DIR [--threads T] [--adapt-threads=false]: DIR/checkpoint.bin
+// is written after every simulation and every --checkpoint-seconds within one (dynamic solver);
+// the resumed run relaxes
 // the structure again (deterministic), replays the finished simulations and goes on with the
 // one that was running, ending with the same files as an uninterrupted run.
 #include <fmt/format.h>

@@ -1,7 +1,7 @@
 // packlab generate vem [--config FILE.toml] [--structural N] [--voids N] [--phi-s X] [--radius R]
 //   [--seed S] [--threads T] [--max-q Q] [--snapshot-every K] [--checkpoint-seconds S] [any option
 //   of io::vem_options() as --key-with-dashes] [--no-plots] [--quiet] --out DIR
-// packlab generate vem --resume DIR [--threads T]
+// packlab generate vem --resume DIR [--threads T] [--adapt-threads=false]
 //
 // The void expansion method (generate/vem.hpp, docs/vem.md). DIR receives packing.xyz and
 // packing.vtu (the structural particles at the end, voids removed), cn_curve.csv, cn_curve.png,

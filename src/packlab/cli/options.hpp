@@ -121,9 +121,9 @@ struct CommandParts {
                                    // (an output file, output_positional, is then the command's to restore)
 };
 
-// --resume DIR of a resumable command: refuses --config, every flag of the set but --threads,
-// an input file and an --out other than DIR; puts the saved settings into the set's targets,
-// then the --threads flag. Returns the saved run.
+// --resume DIR of a resumable command: refuses --config, every flag of the set but --threads
+// and --adapt-threads, an input file and an --out other than DIR; puts the saved settings into
+// the set's targets, then those two flags. Returns the saved run.
 SavedRun resume_saved_run(const OptionFlags& flags, const std::string& dir, const std::string& in,
                           const std::string& out);
 

@@ -7,7 +7,7 @@
 // Writes DIR/stress_strain.csv (every sample), DIR/cycles.csv (per cycle and orientation),
 // DIR/shear.png (Fig. 4), DIR/relaxed.vtu (the tested structure with its bonds) and
 // DIR/report.json.
-// packlab test shear --resume DIR [--threads T]
+// packlab test shear --resume DIR [--threads T] [--adapt-threads=false]
 // The dynamic solver writes DIR/checkpoint.bin after the relaxation and after each orientation
 // (at most every --checkpoint-seconds, and at the end; cli/checkpoint.hpp); --resume DIR runs
 // the orientations still missing and writes the same files as an uninterrupted run (an

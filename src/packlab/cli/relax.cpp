@@ -2,7 +2,7 @@
 //   --normal-stiffness, --shear-stiffness, --friction, --damping, --density, ...] [--stiffness-rule R]
 //   [--time-step --time-step-safety --steps --tolerance --check-interval --threads --seed] [--log FILE.csv]
 //   [--checkpoint DIR [--checkpoint-seconds S]]
-// packlab relax --resume DIR [--threads T]
+// packlab relax --resume DIR [--threads T] [--adapt-threads=false]
 // With --checkpoint DIR the engine's and the relaxation's state go to DIR/checkpoint.bin every
 // --checkpoint-seconds and at the end (cli/checkpoint.hpp); --resume DIR goes on from it and
 // writes OUT (and the log) as the uninterrupted run would have, bit for bit.

@@ -6,7 +6,7 @@
 // over any packing). Writes DIR/report.json ({"youngs_modulus", "strength", "broken_bonds", ...}
 // in SI), curve.csv, bond_strain.csv, particle_stress.csv, broken_bonds.csv/.vtu, model.vtu and
 // the plots. Flags override the config file.
-// packlab test compress --resume DIR [--threads T]
+// packlab test compress --resume DIR [--threads T] [--adapt-threads=false]
 // The dynamic solver writes DIR/checkpoint.bin every --checkpoint-seconds and at the end
 // (cli/checkpoint.hpp); --resume DIR goes on from it and writes the same files as an
 // uninterrupted run. The static solver (--solver static) takes no checkpoints.

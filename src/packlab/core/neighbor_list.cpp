@@ -146,6 +146,10 @@ void NeighborList::build(const Box& box, std::vector<Vec3>& position, const std:
     auto& ti = t == 0 ? image_ : thread_image[t - 1];
     tp.clear();
     ti.clear();
+    if (t > 0) {  // about the last list's share, as thread 0's (a bad_alloc is caught below)
+      tp.reserve(expected_pairs + expected_pairs / 16);
+      ti.reserve(expected_pairs + expected_pairs / 16);
+    }
     // Static contiguous chunks of i: concatenating the chunks in thread order gives the
     // same list as a serial build.
     const int begin = static_cast<int>(static_cast<long>(n) * t / threads);
@@ -338,8 +342,11 @@ void NeighborList::load(std::istream& in) {
   binary::read_vector(in, radius_at_build_, "radii at build");
   const std::size_t n = position_at_build_.size();
   if (first_.size() != n + 1 || radius_at_build_.size() != n || image_.size() != partner_.size() ||
-      (n > 0 && static_cast<std::size_t>(first_[n]) != partner_.size()))
+      (n > 0 && static_cast<std::size_t>(first_[n]) != partner_.size()) || (n > 0 && first_[0] != 0))
     fail_input("checkpoint is damaged: inconsistent neighbour list");
+  // The pair loops walk the index along the pairs: it must not decrease.
+  for (std::size_t i = 0; i < n; ++i)
+    if (first_[i + 1] < first_[i]) fail_input("checkpoint is damaged: inconsistent neighbour list");
   for (int j : partner_)
     if (j < 0 || static_cast<std::size_t>(j) >= n) fail_input("checkpoint is damaged: neighbour index out of range");
 }

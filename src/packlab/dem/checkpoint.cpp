@@ -105,8 +105,12 @@ void Engine::load_state(std::istream& in) {
     fail_input("checkpoint is damaged: wall data do not match");
   for (auto* v : {&P.position, &P.velocity, &P.angular_velocity, &P.force, &P.torque})
     if (v->size() != n) fail_input("checkpoint is damaged: array sizes differ");
-  if (P.radius.size() != n || P.type.size() != n || P.fixed.size() != n ||
-      density_.size() != (input_has_density_ ? n : 0) || original_index_.size() != n)
+  if (density_.size() != (input_has_density_ ? n : 0))
+    fail_input(input_has_density_ ? "checkpoint was written by an engine whose packing had no per-particle densities; "
+                                    "this one has them"
+                                  : "checkpoint was written by an engine whose packing had per-particle densities; "
+                                    "this one has none");
+  if (P.radius.size() != n || P.type.size() != n || P.fixed.size() != n || original_index_.size() != n)
     fail_input("checkpoint is damaged: array sizes differ");
   for (const int t : P.type)
     if (t < 0 || static_cast<std::size_t>(t) >= type_damping_.size())

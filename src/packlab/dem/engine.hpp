@@ -113,9 +113,9 @@ struct BondBreak {
 // Heap bytes an engine holds (vector capacities), by what they store: what `bench_relax` and
 // `bench_compress` report per particle and per bond (docs/engine.md "Performance").
 struct EngineMemory {
-  std::size_t particles = 0;        // state, masses, damping, order, wraps, per-particle sums
-  std::size_t neighbor_list = 0;    // index, cells and the positions at the last build
-  std::size_t listed_pairs = 0;     // partners, images, history map, pair owners, bonded flags
+  std::size_t particles = 0;        // state, masses, order, wraps, per-particle sums, bond index
+  std::size_t neighbor_list = 0;    // index, the positions and radii at the last build
+  std::size_t listed_pairs = 0;     // partners, images, bonded flags (with bonds)
   std::size_t contact_history = 0;  // the contact law's per-pair history (shear springs)
   std::size_t bonds = 0;            // bond list, the bond law's state, order and failure room
   std::size_t threads = 0;          // per-thread crossing lists
@@ -205,8 +205,9 @@ class Engine {
   void set_radius_of_type(int type, double radius);
   // Sets every radius (in the packing's particle order).
   void set_radii(const std::vector<double>& radius);
-  // Call after editing particles().mass / inertia (or their inverses) directly, e.g. for mass
-  // scaling: refreshes what the engine derives from the masses.
+  // Call after editing particles().mass, inverse_mass or inverse_inertia directly, e.g. for
+  // mass scaling: refreshes what the engine derives from the masses. (A radius change or a
+  // loaded state recomputes the true masses: scale again after them.)
   void masses_changed();
 
   // The whole dynamic state (particles, contact histories, neighbour list, step, time, time

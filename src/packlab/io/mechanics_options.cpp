@@ -50,7 +50,8 @@ void add_oscillatory_shear_options(ConfigSchema& schema, mechanics::OscillatoryS
       .integer("threads", t.threads, "OpenMP threads (0 = all cores)")
       .range({0.0, 1024.0, false, false})
       .boolean("adapt_threads", t.adapt_threads,
-               "Dynamic solver, threads > 1: start at one thread and use the configured count while probes find it "
+               "Dynamic solver, more than one thread (threads = 0: every core): start at one thread and use the "
+               "configured count while probes find it "
                "faster (a busy "
                "machine can make threads slower than one, docs/engine.md \"Parallelism\"); false: the configured count "
                "from the first step. The results do not depend on it")
@@ -133,7 +134,8 @@ void add_uniaxial_compression_options(ConfigSchema& schema, mechanics::UniaxialC
       .integer("threads", o.threads, "OpenMP threads (0 = all cores)")
       .range({0.0, 1024.0, false, false})
       .boolean("adapt_threads", o.adapt_threads,
-               "Dynamic solver, threads > 1: start at one thread and use the configured count while probes find it "
+               "Dynamic solver, more than one thread (threads = 0: every core): start at one thread and use the "
+               "configured count while probes find it "
                "faster (a busy "
                "machine can make threads slower than one, docs/engine.md \"Parallelism\"); false: the configured count "
                "from the first step. The results do not depend on it")

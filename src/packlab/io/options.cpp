@@ -113,10 +113,11 @@ void add_engine_options(ConfigSchema& schema, EngineSettings& s) {
       .range(ranges::positive)
       .integer("threads", s.engine.threads,
                "OpenMP threads (0 = all cores): the engine starts at one and uses these while probes find them "
-               "faster (docs/engine.md); the results do not depend on the count")
+               "faster (adapt_threads; docs/engine.md); the results do not depend on the count")
       .range({0.0, 1024.0, false, false})
       .boolean("adapt_threads", s.engine.adapt_threads,
-               "With threads > 1: start at one thread and use the configured count while probes find it faster (a busy "
+               "With more than one thread (threads = 0: every core): start at one thread and use the configured count "
+               "while probes find it faster (a busy "
                "machine can make threads slower than one, docs/engine.md \"Parallelism\"); false: the configured count "
                "from the first step. The results do not depend on it");
 }
@@ -159,7 +160,8 @@ ConfigSchema vem_options(generate::VemParams& p) {
       .integer("threads", p.threads, "OpenMP threads (0 = all cores)")
       .range({0.0, 1024.0, false, false})
       .boolean("adapt_threads", p.adapt_threads,
-               "With threads > 1: start at one thread and use the configured count while probes find it faster (a busy "
+               "With more than one thread (threads = 0: every core): start at one thread and use the configured count "
+               "while probes find it faster (a busy "
                "machine can make threads slower than one, docs/engine.md \"Parallelism\"); false: the configured count "
                "from the first step. The results do not depend on it")
       .integer("blowup_steps", p.blowup_steps, "Blow-up steps m of the structural particles")
