@@ -2,7 +2,8 @@
 // normal z, shear x) of the N = 8000 case: the VEM structure N_S = 8000, N_V = 2000, Phi = 0.4,
 // r = 0.25 um (examples/shear/data/vem_ns8000_nv2000.xyz), contact bonds at (1 + 0.01) 2r,
 // Table 1 parameters (k_n = 100, k_s = 10 N/m particle stiffnesses, damping 0.9, rho = 3690).
-// usage: bench_shear [FILE] [THREADS] [STEPS_PER_CYCLE] [CYCLES]
+// usage: bench_shear [FILE] [THREADS] [STEPS_PER_CYCLE] [CYCLES] [fixed]; "fixed": THREADS from
+// the first step (adapt_threads off: an adapting engine starts at one thread, docs/engine.md)
 // last line: packlab shear N=... bonds=... steps=... wall_s=... pts_per_s=...
 #include <fmt/format.h>
 
@@ -18,6 +19,8 @@
 using namespace packlab;
 
 int main(int argc, char** argv) {
+  const bool fixed_threads = argc > 1 && std::string(argv[argc - 1]) == "fixed";
+  if (fixed_threads) --argc;
   const std::string file = argc > 1 ? argv[1] : "examples/shear/data/vem_ns8000_nv2000.xyz";
   const int threads = argc > 2 ? std::atoi(argv[2]) : 1;
   const long steps_per_cycle = argc > 3 ? std::atol(argv[3]) : 10000;
@@ -25,6 +28,7 @@ int main(int argc, char** argv) {
   Packing packing = bench::shear_case(file);
   mechanics::OscillatoryShearOptions o;
   o.threads = threads;
+  o.adapt_threads = !fixed_threads;
   o.steps_per_cycle = steps_per_cycle;
   o.cycles = cycles;
   o.orientations = "z:x";
@@ -38,7 +42,8 @@ int main(int argc, char** argv) {
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   const auto& run = r.runs.at(0);
   const double n = static_cast<double>(run.structure_particles + run.plate_particles);
-  fmt::print("packlab threads={} relax: {} steps {:.2f} s ({})\n", threads, relax.steps, relax_s, relax.reason());
+  fmt::print("packlab threads={} ({}) relax: {} steps {:.2f} s ({})\n", threads, fixed_threads ? "fixed" : "adaptive",
+             relax.steps, relax_s, relax.reason());
   fmt::print("packlab shear G'={:.4g} Pa phase={:.3g} rad settle_steps={} loading_steps={} dt={:.4g} s\n",
              run.storage_modulus, run.phase_angle, run.settle.steps, run.steps - run.settle.steps, run.time_step);
   fmt::print("packlab shear N={} structure={} bonds={} steps={} wall_s={:.3f} pts_per_s={:.4g}\n", static_cast<long>(n),

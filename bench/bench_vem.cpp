@@ -1,12 +1,14 @@
 // End-to-end benchmark of the void expansion method (vem-void-expansion-method Fig. 1 case by
 // default: N_S = 8000, N_V = 2000, Phi_S = 0.4, Table 1 parameters, stop at stage III).
-// usage: bench_vem [THREADS] [N_S] [N_V] [PHI_S] [MAX_CYCLES] [SKIN]
+// usage: bench_vem [THREADS] [N_S] [N_V] [PHI_S] [MAX_CYCLES] [SKIN] [fixed]; "fixed": THREADS
+// from the first step (adapt_threads off: an adapting engine starts at one thread)
 //   MAX_CYCLES > 0 stops after that many void increments (for a rate measurement).
 // Prints per phase: wall time, DEM steps, particle-steps/s, steps and seconds per cycle.
 #include <fmt/format.h>
 
 #include <chrono>
 #include <cstdlib>
+#include <string>
 
 #include "packlab/generate/vem.hpp"
 
@@ -14,6 +16,9 @@ using namespace packlab;
 
 int main(int argc, char** argv) {
   generate::VemParams p;
+  const bool fixed_threads = argc > 1 && std::string(argv[argc - 1]) == "fixed";
+  if (fixed_threads) --argc;
+  p.adapt_threads = !fixed_threads;
   p.threads = argc > 1 ? std::atoi(argv[1]) : 2;
   if (argc > 2) p.structural = std::atol(argv[2]);
   if (argc > 3) p.voids = std::atol(argv[3]);
@@ -29,8 +34,9 @@ int main(int argc, char** argv) {
   const auto t1 = Clock::now();
   const long blowup_steps = vem.total_steps();
   const double blowup_s = std::chrono::duration<double>(t1 - t0).count();
-  fmt::print("bench_vem N_S={} N_V={} phi_s={} threads={} skin={} time_step_rule={} safety={}\n", p.structural,
-             p.voids, p.phi_s, p.threads, p.skin, p.time_step_rule, p.time_step_safety);
+  fmt::print("bench_vem N_S={} N_V={} phi_s={} threads={} ({}) skin={} time_step_rule={} safety={}\n", p.structural,
+             p.voids, p.phi_s, p.threads, fixed_threads ? "fixed" : "adaptive", p.skin, p.time_step_rule,
+             p.time_step_safety);
   const long blowup_builds = vem.engine().neighbor_builds();
   fmt::print("blow-up: {} steps in {:.2f} s, {:.4g} particle-steps/s, {} neighbour builds, mean dt {:.3g} s\n",
              blowup_steps, blowup_s, particles * static_cast<double>(blowup_steps) / blowup_s, blowup_builds,
@@ -40,12 +46,13 @@ int main(int argc, char** argv) {
   const double expansion_s = std::chrono::duration<double>(t2 - t1).count();
   const long expansion_steps = vem.total_steps() - blowup_steps;
   const long cycles = vem.cycle();
-  fmt::print("expansion: {} cycles, {} steps in {:.2f} s, {:.4g} particle-steps/s, {:.0f} steps/cycle, "
-             "{:.3f} s/cycle, last q {:.3f}, {} relaxations at the step limit, stop {}\n",
-             cycles, expansion_steps, expansion_s, particles * static_cast<double>(expansion_steps) / expansion_s,
-             static_cast<double>(expansion_steps) / static_cast<double>(std::max(1L, cycles)),
-             expansion_s / static_cast<double>(std::max(1L, cycles)), vem.curve().back().q, vem.limited_relaxations(),
-             generate::vem_stop_name(vem.stop_reason()));
+  fmt::print(
+      "expansion: {} cycles, {} steps in {:.2f} s, {:.4g} particle-steps/s, {:.0f} steps/cycle, "
+      "{:.3f} s/cycle, last q {:.3f}, {} relaxations at the step limit, stop {}\n",
+      cycles, expansion_steps, expansion_s, particles * static_cast<double>(expansion_steps) / expansion_s,
+      static_cast<double>(expansion_steps) / static_cast<double>(std::max(1L, cycles)),
+      expansion_s / static_cast<double>(std::max(1L, cycles)), vem.curve().back().q, vem.limited_relaxations(),
+      generate::vem_stop_name(vem.stop_reason()));
   fmt::print("expansion: {} neighbour builds\n", vem.engine().neighbor_builds() - blowup_builds);
   fmt::print("total: {:.2f} s, {:.4g} particle-steps/s\n", blowup_s + expansion_s,
              particles * static_cast<double>(vem.total_steps()) / (blowup_s + expansion_s));
