@@ -5,9 +5,8 @@
 // (mechanics::calibrate). Writes DIR/calibration.csv (every evaluation) and DIR/report.json.
 // packlab calibrate shear --resume DIR [--threads T] [--adapt-threads=false]: DIR/checkpoint.bin
 // is written after every simulation and every --checkpoint-seconds within one (dynamic solver);
-// the resumed run relaxes
-// the structure again (deterministic), replays the finished simulations and goes on with the
-// one that was running, ending with the same files as an uninterrupted run.
+// the resumed run relaxes the structure again (deterministic), replays the finished simulations
+// and goes on with the one that was running, ending with the same files as an uninterrupted run.
 #include <fmt/format.h>
 
 #include <cmath>

@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include "packlab/core/error.hpp"
+#include "packlab/io/adapt_threads_help.hpp"
 #include "packlab/io/options.hpp"
 
 namespace packlab::io {
@@ -49,12 +50,7 @@ void add_oscillatory_shear_options(ConfigSchema& schema, mechanics::OscillatoryS
       .range({0.0, 1.0, true, false})
       .integer("threads", t.threads, "OpenMP threads (0 = all cores)")
       .range({0.0, 1024.0, false, false})
-      .boolean("adapt_threads", t.adapt_threads,
-               "Dynamic solver, more than one thread (threads = 0: every core): start at one thread and use the "
-               "configured count while probes find it "
-               "faster (a busy "
-               "machine can make threads slower than one, docs/engine.md \"Parallelism\"); false: the configured count "
-               "from the first step. The results do not depend on it")
+      .boolean("adapt_threads", t.adapt_threads, adapt_threads_help("Dynamic solver, more than one thread"))
       .text("solver", t.solver,
             "dynamic: oscillating plate in explicit DEM; static: one quasi-static linear solve per orientation "
             "(phase angle 0 by construction; docs/static-solver.md)")
@@ -133,12 +129,7 @@ void add_uniaxial_compression_options(ConfigSchema& schema, mechanics::UniaxialC
       .range({0.0, 1.0, true, false})
       .integer("threads", o.threads, "OpenMP threads (0 = all cores)")
       .range({0.0, 1024.0, false, false})
-      .boolean("adapt_threads", o.adapt_threads,
-               "Dynamic solver, more than one thread (threads = 0: every core): start at one thread and use the "
-               "configured count while probes find it "
-               "faster (a busy "
-               "machine can make threads slower than one, docs/engine.md \"Parallelism\"); false: the configured count "
-               "from the first step. The results do not depend on it")
+      .boolean("adapt_threads", o.adapt_threads, adapt_threads_help("Dynamic solver, more than one thread"))
       .text("solver", o.solver,
             "dynamic: explicit DEM at strain_rate; static: quasi-static linear solves, strength by sequential "
             "linear analysis (docs/static-solver.md)")

@@ -7,6 +7,7 @@
 #include <numbers>
 
 #include "packlab/core/error.hpp"
+#include "packlab/io/adapt_threads_help.hpp"
 
 namespace packlab::io {
 
@@ -115,11 +116,7 @@ void add_engine_options(ConfigSchema& schema, EngineSettings& s) {
                "OpenMP threads (0 = all cores): the engine starts at one and uses these while probes find them "
                "faster (adapt_threads; docs/engine.md); the results do not depend on the count")
       .range({0.0, 1024.0, false, false})
-      .boolean("adapt_threads", s.engine.adapt_threads,
-               "With more than one thread (threads = 0: every core): start at one thread and use the configured count "
-               "while probes find it faster (a busy "
-               "machine can make threads slower than one, docs/engine.md \"Parallelism\"); false: the configured count "
-               "from the first step. The results do not depend on it");
+      .boolean("adapt_threads", s.engine.adapt_threads, adapt_threads_help("With more than one thread"));
 }
 
 ConfigSchema engine_options(EngineSettings& s) {
@@ -159,11 +156,7 @@ ConfigSchema vem_options(generate::VemParams& p) {
       .integer("seed", p.seed, "Seed of the random generator")
       .integer("threads", p.threads, "OpenMP threads (0 = all cores)")
       .range({0.0, 1024.0, false, false})
-      .boolean("adapt_threads", p.adapt_threads,
-               "With more than one thread (threads = 0: every core): start at one thread and use the configured count "
-               "while probes find it faster (a busy "
-               "machine can make threads slower than one, docs/engine.md \"Parallelism\"); false: the configured count "
-               "from the first step. The results do not depend on it")
+      .boolean("adapt_threads", p.adapt_threads, adapt_threads_help("With more than one thread"))
       .integer("blowup_steps", p.blowup_steps, "Blow-up steps m of the structural particles")
       .range({1.0, 10000.0, false, false})
       .number("void_radius_ratio", p.void_radius_ratio, "Initial void radius and its growth per cycle, r_V0 / r_S")
