@@ -38,6 +38,16 @@ STDERR_NAME = "study-stderr.txt"
 FAILURE_NAME = "study-failure.json"
 WALL_NAME = "study-wall.json"
 STDERR_TAIL_LINES = 20
+CHECKPOINT_NAME = "checkpoint.bin"
+# A killed run of these commands goes on from the checkpoint it left in its folder
+# (`packlab COMMAND --resume DIR`, cli/checkpoint.hpp) instead of starting again. `relax` keeps
+# its checkpoint where --checkpoint says, `generate vem` its own: those start again.
+RESUMABLE = {"test compress", "test shear", "calibrate compress", "calibrate shear", "generate fba", "generate bd",
+             "shake"}
+# The flags a resumed run takes besides --resume: output only, or the threads (the settings
+# come from the checkpoint).
+RESUME_FLAGS = {"--quiet", "--no-plots", "--no-vtu"}
+RESUME_OPTIONS = {"--threads", "--adapt-threads"}
 SPEC_KEYS = {"command", "args", "options", "seed_option", "out_option", "out_file", "stage", "sweep", "combine", "seed",
              "realizations", "seeds", "collect", "name"}
 STAGE_KEYS = {"name", "command", "args", "options", "seed_option", "out_option", "out_file"}
@@ -295,7 +305,8 @@ def plan(spec, out):
                     argv_run += ["--" + stage["out_option"], os.path.join(directory, stage["out_file"]) if
                                  stage["out_file"] else directory]
                 units.setdefault(key, {"key": key, "stage": stage["name"], "argv": argv_run, "dir": directory,
-                                       "deps": deps, "out_file": stage["out_file"]})
+                                       "deps": deps, "out_file": stage["out_file"],
+                                       "command": list(stage["command"])})
                 keys[stage["name"]] = key
                 dirs[stage["name"]] = directory
             tasks.append({"point": point, "realization": realization, "seed": seed,
@@ -310,6 +321,28 @@ def is_done(directory):
 def _write_json(path, value):
     with atomic_output(path, ".study-") as tmp, open(tmp, "w") as f:
         json.dump(value, f, indent=1)
+
+
+def resume_argv(unit):
+    """`COMMAND --resume DIR` with the unit's output and thread flags, when its folder holds the
+    checkpoint of a killed run of a resumable command; else None."""
+    command = unit.get("command", [])
+    if " ".join(command) not in RESUMABLE or not os.path.isfile(os.path.join(unit["dir"], CHECKPOINT_NAME)):
+        return None
+    argv, rest = [*command, "--resume", unit["dir"]], unit["argv"][len(command):]
+    for k, arg in enumerate(rest):
+        if arg in RESUME_FLAGS:
+            argv.append(arg)
+        elif arg in RESUME_OPTIONS and k + 1 < len(rest):
+            argv += [arg, rest[k + 1]]
+    return argv
+
+
+def _clear_unit(directory):
+    for name in os.listdir(directory):  # what a killed run left behind: start clean
+        if name != LOCK_NAME:
+            path = os.path.join(directory, name)
+            shutil.rmtree(path) if os.path.isdir(path) and not os.path.islink(path) else os.remove(path)
 
 
 def run_unit(unit, packlab, dep_results=()):
@@ -334,21 +367,32 @@ def run_unit(unit, packlab, dep_results=()):
                 time.sleep(0.2)
         if is_done(directory):
             return result
-        for name in os.listdir(directory):  # what a killed run left behind: start clean
-            if name != LOCK_NAME:
-                path = os.path.join(directory, name)
-                shutil.rmtree(path) if os.path.isdir(path) and not os.path.islink(path) else os.remove(path)
+
+        def run(argv, note=""):
+            with open(os.path.join(directory, STDOUT_NAME), "a" if note else "w") as stdout, \
+                    open(os.path.join(directory, STDERR_NAME), "w") as stderr:
+                if note:
+                    stdout.write(note)
+                    stdout.flush()
+                try:
+                    # The child inherits the locked descriptor: the lock lives as long as the child.
+                    return subprocess.run([packlab, *argv], stdout=stdout, stderr=stderr, stdin=subprocess.DEVNULL,
+                                          pass_fds=(lock.fileno(),)).returncode, None
+                except OSError as error:
+                    return 127, f"cannot run {packlab}: {error.strerror}"
+
         start = time.monotonic()
-        with open(os.path.join(directory, STDOUT_NAME), "w") as stdout, \
-                open(os.path.join(directory, STDERR_NAME), "w") as stderr:
-            try:
-                # The child inherits the locked descriptor: the lock lives as long as the child.
-                code = subprocess.run([packlab, *unit["argv"]], stdout=stdout, stderr=stderr, stdin=subprocess.DEVNULL,
-                                      pass_fds=(lock.fileno(),)).returncode
-            except OSError as error:
-                code, stderr_text = 127, f"cannot run {packlab}: {error.strerror}"
-            else:
-                stderr_text = None
+        resume = resume_argv(unit)
+        code = None
+        if resume is not None:
+            # A killed run's checkpoint: go on from it. Refused (exit code 2: damaged, or of
+            # another packlab version): start clean like any other killed run.
+            code, stderr_text = run(resume, f"study: resuming from {CHECKPOINT_NAME}: {shlex.join(resume)}\n")
+            if code == 2:
+                code = None
+        if code is None:
+            _clear_unit(directory)
+            code, stderr_text = run(unit["argv"])
         seconds = time.monotonic() - start
         result["seconds"] = seconds
         out_file = unit.get("out_file")

@@ -9,6 +9,7 @@ run completes: the marker counts the runs that finished."""
 import csv
 import json
 import os
+import shutil
 import signal
 import subprocess
 import sys
@@ -405,6 +406,51 @@ def test_quick_example_with_packlab(tmp_path):
     sweep = list(rows[0])[0]
     assert plot_main(["study", str(out), "--x", sweep, "--y", field, "--out", str(png)]) == 0
     assert png.stat().st_size > 1000
+
+
+def test_killed_static_compression_resumes_from_its_checkpoint(tmp_path, cli):
+    """A study unit killed after its third checkpoint (the PACKLAB_KILL_AFTER_CHECKPOINTS hook) goes
+    on from that checkpoint when the study is run again, and gives the files of an uninterrupted
+    run; a damaged checkpoint (refused with exit code 2) is started again from the beginning."""
+    binary = os.environ.get("PACKLAB_BINARY") or shutil.which("packlab")
+    cli("generate", "fba", "--particles", 300, "--diameter", 15e-9, "--porosity", 0.45, "--periodic", "xy", "--quiet",
+        "--no-plots", "--out", tmp_path / "fba")
+    cli("bond", tmp_path / "fba" / "packing.vtu", "--model", "elastic", "--cutoff-ratio", 1.1, "--out",
+        tmp_path / "model.vtu")
+    options = ["--bond-youngs-modulus", "6.53e9", "--bond-poisson-ratio", "0.17", "--bond-strength", "94.3e6",
+               "--solver", "static", "--max-strain", "0.2", "--stop-drop", "0.5", "--checkpoint-breaks", "4",
+               "--checkpoint-seconds", "1e-9", "--threads", "1"]
+    cli("test", "compress", tmp_path / "model.vtu", *options, "--quiet", "--no-plots", "--out", tmp_path / "straight")
+    table = "\n".join(f"{options[k][2:]} = \"{options[k + 1]}\"" for k in range(0, len(options), 2))
+    spec = write_spec(tmp_path / "s.toml", textwrap.dedent(f"""\
+        command = "test compress"
+        args = ["{tmp_path / 'model.vtu'}"]
+        seed_option = ""
+        seeds = [1]
+        collect = ["strength"]
+        [options]
+        quiet = true
+        no-plots = true
+        """) + table + "\n")
+    out = tmp_path / "study"
+    command = [sys.executable, "-m", "packlab.studies", spec, "--out", str(out), "--workers", "1", "--packlab",
+               binary, "--quiet"]
+    env = {**os.environ, "PYTHONPATH": PYTHON_DIR}
+    killed = subprocess.run(command, env={**env, "PACKLAB_KILL_AFTER_CHECKPOINTS": "3"})
+    assert killed.returncode != 0
+    (unit,) = [p for p in (out / "runs").iterdir()]
+    assert (unit / "checkpoint.bin").exists() and not (unit / "report.json").exists()
+    assert subprocess.run(command, env=env).returncode == 0
+    assert "study: resuming from checkpoint.bin" in (unit / "study-stdout.txt").read_text()
+    for name in ["curve.csv", "broken_bonds.csv"]:
+        assert (unit / name).read_bytes() == (tmp_path / "straight" / name).read_bytes(), name
+    assert read_csv(out / "tasks.csv")[0]["status"] == "done"
+    # A damaged checkpoint: the resume is refused (exit code 2) and the unit runs from the start.
+    (unit / "report.json").unlink()
+    (unit / "checkpoint.bin").write_bytes(b"not a checkpoint")
+    assert subprocess.run(command, env=env).returncode == 0
+    assert "resuming" not in (unit / "study-stdout.txt").read_text()
+    assert (unit / "curve.csv").read_bytes() == (tmp_path / "straight" / "curve.csv").read_bytes()
 
 
 def test_plot_study(tmp_path, fake):

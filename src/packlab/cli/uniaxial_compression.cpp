@@ -8,8 +8,9 @@
 // the plots. Flags override the config file.
 // packlab test compress --resume DIR [--threads T] [--adapt-threads=false]
 // The dynamic solver writes DIR/checkpoint.bin every --checkpoint-seconds and at the end
-// (cli/checkpoint.hpp); --resume DIR goes on from it and writes the same files as an
-// uninterrupted run. The static solver (--solver static) takes no checkpoints.
+// (cli/checkpoint.hpp), the static solver (--solver static) at its fresh factorizations every
+// --checkpoint-breaks breaks once --checkpoint-seconds have passed; --resume DIR goes on from it
+// and writes the same files as an uninterrupted run.
 #include "packlab/mechanics/uniaxial_compression.hpp"
 
 #include <fmt/format.h>
@@ -59,12 +60,10 @@ void add_test_compress(CLI::App& test) {
               fmt::format("strain {:.4f}, stress {:.4g} MPa, broken {}", p.strain, p.stress * 1e-6, p.broken_bonds));
         };
         CheckpointWriter checkpoint(dir, c.flags->schema(), c.in, c.settings.checkpoint_seconds);
-        if (s.options.solver != "static") {
-          s.options.checkpoint = [&](const std::function<void(std::ostream&)>& state, bool end) {
-            end ? checkpoint.write(state) : checkpoint.write_if_due(state);
-          };
-          if (c.resumed) s.options.resume = &c.resumed->state;
-        }
+        s.options.checkpoint = [&](const std::function<void(std::ostream&)>& state, bool end) {
+          end ? checkpoint.write(state) : checkpoint.write_if_due(state);
+        };
+        if (c.resumed) s.options.resume = &c.resumed->state;
         const mechanics::UniaxialCompressionResult r = mechanics::run_uniaxial_compression(model, s.options);
         progress.finish();
         nlohmann::json report = io::report_header("test compress");
@@ -105,7 +104,8 @@ void add_test_compress(CLI::App& test) {
   cmd->add_flag("--no-vtu", *no_vtu, "Do not write the final model (model.vtu)");
   cmd->footer(
       "Checkpoints (--checkpoint-seconds, --resume): the dynamic solver writes one every --checkpoint-seconds and "
-      "at the end; --solver static takes none (its linear solves are not checkpointed).");
+      "at the end; --solver static at the first of its fresh factorizations (every --checkpoint-breaks breaks) "
+      "after --checkpoint-seconds. A resumed run writes the files of an uninterrupted one.");
 }
 
 }  // namespace packlab::cli

@@ -143,7 +143,11 @@ void add_uniaxial_compression_options(ConfigSchema& schema, mechanics::UniaxialC
       .integer("check_interval", o.check_interval,
                "Static solver: check every n-th re-solve after a bond break against the matrix (1 = each); a failed "
                "check goes back to the last checked break (docs/static-solver.md)")
-      .range({1.0, 1e6, false, false});
+      .range({1.0, 1e6, false, false})
+      .integer("checkpoint_breaks", o.checkpoint_breaks,
+               "Static solver: factorize anew after every this many bond breaks, where a checkpoint is written "
+               "once checkpoint_seconds have passed (a resumed run gives the uninterrupted run's results)")
+      .range({1.0, 1e12, false, false});
 }
 
 namespace {

@@ -3,11 +3,13 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <limits>
 #include <span>
 
+#include "packlab/core/binary_io.hpp"
 #include "packlab/core/error.hpp"
 #include "packlab/mechanics/static_loading.hpp"
 
@@ -31,6 +33,57 @@ double lateral_strain(const Packing& model, const std::vector<double>& q, int ax
   }
   const double var = sxx - sx * sx / count;
   return var > 0.0 ? (sxu - sx * su / count) / var : nan;
+}
+
+// The solver's counts and times, carried through a checkpoint (a resumed run's solver starts at
+// zero; the report gives the whole run's).
+void write_solver_stats(std::ostream& out, const StaticSolverStats& st) {
+  binary::write(out, std::array<long, 8>{st.factorizations, st.solves, st.pcg_iterations, st.downdates,
+                                         st.backward_only_solves, st.checks, st.unchecked_solves, st.rollbacks});
+  binary::write(out, std::array<double, 5>{st.assemble_seconds, st.factor_seconds, st.solve_seconds,
+                                           st.downdate_seconds, st.check_seconds});
+}
+
+// The counts and times of two stretches of one run (before and after a resume).
+StaticSolverStats add_counts(StaticSolverStats a, const StaticSolverStats& b) {
+  a.factorizations += b.factorizations;
+  a.solves += b.solves;
+  a.pcg_iterations += b.pcg_iterations;
+  a.downdates += b.downdates;
+  a.backward_only_solves += b.backward_only_solves;
+  a.checks += b.checks;
+  a.unchecked_solves += b.unchecked_solves;
+  a.rollbacks += b.rollbacks;
+  a.assemble_seconds += b.assemble_seconds;
+  a.factor_seconds += b.factor_seconds;
+  a.solve_seconds += b.solve_seconds;
+  a.downdate_seconds += b.downdate_seconds;
+  a.check_seconds += b.check_seconds;
+  return a;
+}
+
+StaticSolverStats read_solver_stats(std::istream& in) {
+  std::array<long, 8> counts{};
+  std::array<double, 5> seconds{};
+  binary::read(in, counts, "solver counts");
+  binary::read(in, seconds, "solver times");
+  for (long c : counts)
+    if (c < 0) fail_input("checkpoint is damaged: solver counts");
+  StaticSolverStats st;
+  st.factorizations = static_cast<int>(counts[0]);
+  st.solves = counts[1];
+  st.pcg_iterations = counts[2];
+  st.downdates = counts[3];
+  st.backward_only_solves = counts[4];
+  st.checks = counts[5];
+  st.unchecked_solves = counts[6];
+  st.rollbacks = counts[7];
+  st.assemble_seconds = seconds[0];
+  st.factor_seconds = seconds[1];
+  st.solve_seconds = seconds[2];
+  st.downdate_seconds = seconds[3];
+  st.check_seconds = seconds[4];
+  return st;
 }
 
 }  // namespace
@@ -144,10 +197,59 @@ UniaxialCompressionResult run_static_uniaxial_compression(const Packing& bonded_
 
   double peak = 0.0, last_stress1 = 0.0;
   result.stop_reason = "reached max_strain";
-  add_point(0.0, 0.0, 0.0);
+  std::vector<std::size_t> broken_links;  // per break, its link
+  // Checkpoints (options.checkpoint): at the first verified solve after every
+  // checkpoint_breaks-th break the solver factorizes anew (whether or not a checkpoint is due,
+  // so that the points do not depend on the clock), and the state there is the broken links
+  // in order and what was recorded from them. A resumed run switches those links off in a new
+  // solver, whose first solve is that same fresh factorization.
+  long next_checkpoint = options.checkpoint_breaks;
+  StaticSolverStats earlier;  // of the runs before a resume
+  double earlier_seconds = 0.0;
+  const auto save = [&](std::ostream& out) {
+    binary::write_vector(out, broken_links);
+    binary::write_vector(out, result.break_strain);
+    binary::write_vector(out, result.curve);
+    write_compression_snapshots(out, result.snapshots);
+    binary::write(out, std::array<double, 4>{peak, result.strain_at_peak, result.youngs_modulus, result.poisson_ratio});
+    binary::write(out, next_checkpoint);
+    write_solver_stats(out, add_counts(solver.stats(), earlier));
+    binary::write(out, earlier_seconds + std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
+  };
+  if (options.resume != nullptr) {
+    std::istream& in = *options.resume;
+    binary::read_vector(in, broken_links, "broken links");
+    binary::read_vector(in, result.break_strain, "break strains");
+    binary::read_vector(in, result.curve, "curve");
+    read_compression_snapshots(in, result.snapshots);
+    std::array<double, 4> values{};
+    binary::read(in, values, "peak");
+    binary::read(in, next_checkpoint, "next checkpoint");
+    earlier = read_solver_stats(in);
+    binary::read(in, earlier_seconds, "seconds");
+    if (broken_links.size() != result.break_strain.size() || result.curve.empty() ||
+        result.snapshots.size() > pending.size() || next_checkpoint < options.checkpoint_breaks)
+      fail_input("checkpoint is damaged: static compression state");
+    peak = values[0];
+    result.strain_at_peak = values[1];
+    result.youngs_modulus = values[2];
+    result.poisson_ratio = values[3];
+    next_snapshot = result.snapshots.size();
+    for (std::size_t k : broken_links) {
+      if (k >= links.size() || links.bond[k] < 0 || !solver.active(k))
+        fail_input("checkpoint is damaged: a broken link of another model");
+      const auto b = static_cast<std::size_t>(links.bond[k]);
+      solver.deactivate(k);
+      model.bonds.state[b] = 1;
+      const Vec3 mid = model.position[static_cast<std::size_t>(links.i[k])] + 0.5 * links.branch[k];
+      result.breaks.push_back({b, nan, model.box.wrap(mid)});
+    }
+    intact_bonds -= broken_links.size();
+  } else {
+    add_point(0.0, 0.0, 0.0);
+  }
   // With solver checks every check_interval-th re-solve (static_solver.hpp), the state after
   // the last verified solve's decisions, to go back to when a check finds the factor drifted.
-  std::vector<std::size_t> broken_links;  // per break, its link
   struct Verified {
     std::size_t curve = 0, breaks = 0, snapshots = 0, next_snapshot = 0, intact_bonds = 0;
     double peak = 0.0, strain_at_peak = 0.0;
@@ -173,7 +275,14 @@ UniaxialCompressionResult run_static_uniaxial_compression(const Packing& bonded_
   };
   save_verified();
   for (;;) {
-    if (solver.verified()) save_verified();
+    if (solver.verified()) {
+      save_verified();
+      if (static_cast<long>(broken_links.size()) >= next_checkpoint) {
+        while (next_checkpoint <= static_cast<long>(broken_links.size())) next_checkpoint += options.checkpoint_breaks;
+        solver.refactorize();
+        if (options.checkpoint) options.checkpoint(save, false);
+      }
+    }
     q = unit_q;
     solver.solve(q, no_gradient);
     unit_q = q;
@@ -269,7 +378,7 @@ UniaxialCompressionResult run_static_uniaxial_compression(const Packing& bonded_
   result.modulus.intercept = 0.0;
   result.modulus.strain_begin = 0.0;
   result.modulus.strain_end = result.curve.size() > 1 ? result.curve[1].strain : 0.0;
-  const StaticSolverStats& st = solver.stats();
+  const StaticSolverStats st = add_counts(solver.stats(), earlier);
   result.solves = static_cast<std::size_t>(st.solves);
   result.factorizations = static_cast<std::size_t>(st.factorizations);
   result.solver_bytes = st.matrix_bytes + st.factor_bytes;
@@ -290,7 +399,7 @@ UniaxialCompressionResult run_static_uniaxial_compression(const Packing& bonded_
   for (std::size_t k = 0; k < n; ++k)
     model.position[k] += last * Vec3{unit_q[6 * k], unit_q[6 * k + 1], unit_q[6 * k + 2]};
   result.model = std::move(model);
-  result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  result.seconds = earlier_seconds + std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return result;
 }
 

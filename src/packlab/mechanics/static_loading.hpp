@@ -23,7 +23,10 @@
 #pragma once
 
 #include <array>
+#include <istream>
+#include <ostream>
 #include <span>
+#include <vector>
 
 #include "packlab/core/packing.hpp"
 #include "packlab/dem/engine.hpp"
@@ -32,6 +35,10 @@
 #include "packlab/mechanics/uniaxial_compression.hpp"
 
 namespace packlab::mechanics {
+
+// The snapshots in a compression checkpoint (both solvers; uniaxial_compression.cpp).
+void write_compression_snapshots(std::ostream& out, const std::vector<UniaxialCompressionSnapshot>& snapshots);
+void read_compression_snapshots(std::istream& in, std::vector<UniaxialCompressionSnapshot>& snapshots);
 
 UniaxialCompressionResult run_static_uniaxial_compression(const Packing& bonded_model,
                                                           const UniaxialCompressionOptions& options);

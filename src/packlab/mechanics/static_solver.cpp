@@ -582,6 +582,17 @@ void StaticSolver::restore(std::span<const std::size_t> reactivated) {
   ++stats_.rollbacks;
 }
 
+void StaticSolver::refactorize() {
+  factor_valid_ = false;
+  matrix_changed_ = false;
+  pending_downdates_.clear();  // the next factorization assembles the active links
+  last_load_.clear();
+  last_solution_.clear();
+  drifted_ = false;
+  unverified_solves_ = 0;
+  strict_solves_ = 0;
+}
+
 // bench_static orderings: see the header.
 std::vector<OrderingFill> ordering_fill(const StiffnessAssembly& assembly) {
   std::vector<OrderingFill> out;

@@ -109,6 +109,11 @@ class StaticSolver {
   // since. The next solve factorizes anew; the solves after it are each checked until past the
   // point where the drift was found.
   void restore(std::span<const std::size_t> reactivated);
+  // Factorizes the active links anew at the next solve and forgets the solves before, as a new
+  // solver whose links were deactivated before its first solve would: the sequential linear
+  // analysis does it at its checkpoints (static_compression.cpp), so that a run resumed from one
+  // (a new solver) and the uninterrupted run go on from the same factor, bit for bit.
+  void refactorize();
   // r^T K^-1 r by the current factor (r: one entry per unknown, stats().unknowns): the
   // energy-norm measure of the refinement's convergence check, after at least one solve.
   double inverse_norm_squared(const std::vector<double>& r) const;

@@ -40,17 +40,33 @@ void load_compression_state(std::istream& in, dem::Engine& engine, bool& stopped
                             UniaxialCompressionResult& result) {
   engine.load_state(in);
   std::uint8_t stop = 0;
-  std::uint64_t snapshots = 0;
   binary::read(in, stop, "stop flag");
   binary::read_string(in, result.stop_reason, "stop reason");
   binary::read(in, peak, "peak stress");
   binary::read(in, result.strain_at_peak, "strain at the peak");
   binary::read_vector(in, result.curve, "curve");
-  binary::read(in, snapshots, "snapshot count");
-  if (stop > 1 || snapshots > (1U << 16)) fail_input("checkpoint is damaged: compression state");
+  if (stop > 1) fail_input("checkpoint is damaged: compression state");
   stopped = stop == 1;
-  result.snapshots.resize(snapshots);
-  for (UniaxialCompressionSnapshot& s : result.snapshots) {
+  read_compression_snapshots(in, result.snapshots);
+}
+
+}  // namespace
+
+void write_compression_snapshots(std::ostream& out, const std::vector<UniaxialCompressionSnapshot>& snapshots) {
+  binary::write(out, static_cast<std::uint64_t>(snapshots.size()));
+  for (const UniaxialCompressionSnapshot& s : snapshots) {
+    binary::write(out, std::array<double, 3>{s.requested_strain, s.strain, s.stress});
+    binary::write_vector(out, s.bond_strain);
+    binary::write_vector(out, s.particle_stress);
+  }
+}
+
+void read_compression_snapshots(std::istream& in, std::vector<UniaxialCompressionSnapshot>& snapshots) {
+  std::uint64_t count = 0;
+  binary::read(in, count, "snapshot count");
+  if (count > (1U << 16)) fail_input("checkpoint is damaged: snapshot count");
+  snapshots.resize(count);
+  for (UniaxialCompressionSnapshot& s : snapshots) {
     std::array<double, 3> values{};
     binary::read(in, values, "snapshot");
     s.requested_strain = values[0];
@@ -60,8 +76,6 @@ void load_compression_state(std::istream& in, dem::Engine& engine, bool& stopped
     binary::read_vector(in, s.particle_stress, "snapshot particle stresses");
   }
 }
-
-}  // namespace
 
 dem::EngineConfig compression_engine_config(const UniaxialCompressionOptions& options) {
   dem::EngineConfig config;
@@ -127,12 +141,7 @@ UniaxialCompressionResult run_uniaxial_compression(const Packing& bonded_model,
     binary::write(out, peak);
     binary::write(out, result.strain_at_peak);
     binary::write_vector(out, result.curve);
-    binary::write(out, static_cast<std::uint64_t>(result.snapshots.size()));
-    for (const UniaxialCompressionSnapshot& s : result.snapshots) {
-      binary::write(out, std::array<double, 3>{s.requested_strain, s.strain, s.stress});
-      binary::write_vector(out, s.bond_strain);
-      binary::write_vector(out, s.particle_stress);
-    }
+    write_compression_snapshots(out, result.snapshots);
   };
   if (options.resume != nullptr) load_compression_state(*options.resume, engine, stopped, peak, result);
   next_snapshot = result.snapshots.size();

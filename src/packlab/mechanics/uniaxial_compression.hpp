@@ -109,13 +109,18 @@ struct UniaxialCompressionOptions {
   // (1 = each); a failed check rolls the analysis back to the last checked break (static_solver.hpp).
   int check_interval = 16;
   double check_tolerance = 1e-10;  // static: relative residual and energy-norm error of a check (API only)
+  // static: the first checked solve after every checkpoint_breaks-th break factorizes anew and
+  // is where a checkpoint is written (when checkpoint_seconds have passed): a resumed run
+  // starts from a fresh factorization there, as the uninterrupted run does, and gives its bits.
+  long checkpoint_breaks = 2000;
   // Called at each curve point (progress); may be empty.
   std::function<void(const UniaxialCompressionPoint&)> on_point;
-  // Resumable runs of the dynamic solver (`packlab test compress --resume`, cli/checkpoint.hpp):
-  // `checkpoint` is called after each curve point with a writer of the whole state (the
-  // engine's, the curve, the peak, the snapshots) and once more at the end (`end` true); a run
-  // given `resume`, a stream positioned at such a state, goes on from it exactly as the saved
-  // run would have. The static solver takes no checkpoints (it ignores both).
+  // Resumable runs (`packlab test compress --resume`, cli/checkpoint.hpp): `checkpoint` is
+  // called with a writer of the whole state (dynamic: the engine's, the curve, the peak, the
+  // snapshots) after each curve point and once more at the end (`end` true); static: the broken
+  // bonds in order, the envelope, the peak, the snapshots and the solver's counts at each
+  // checkpoint_breaks point (above). A run given `resume`, a stream positioned at such a state,
+  // goes on from it exactly as the saved run would have.
   std::function<void(const std::function<void(std::ostream&)>& state, bool end)> checkpoint;
   std::istream* resume = nullptr;
   void validate() const;  // InputError naming key, value and allowed range
