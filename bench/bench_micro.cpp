@@ -8,11 +8,14 @@
 //                            particle at volume fraction 0.6 without growth (collisions/s, and
 //                            events/s counting neighbour-list transfers);
 //   shake_trial/<rule>       Shaker sweeps of a dense random packing (trial moves/s, moves/s);
-//   engine_step/10000        dem::Engine::run(1), 1 thread, linear law (particle-steps/s).
+//   engine_step/10000        dem::Engine::run(1), 1 thread, linear law (particle-steps/s);
+//   openmp_fork_join, openmp_barrier  one parallel region, one barrier of two threads (real
+//                            time each, with the program's wait policy).
 // Fixed seeds throughout; the rates are per CPU second of the benchmark thread (Google
 // Benchmark's default), so a machine loaded by other processes shows less in wall time.
 // usage: bench_micro [--benchmark_filter=REGEX] [--benchmark_min_time=SECONDS] ...
 #include <benchmark/benchmark.h>
+#include <omp.h>
 
 #include <cmath>
 #include <cstdint>
@@ -26,6 +29,7 @@
 
 #include "packlab/core/neighbor_list.hpp"
 #include "packlab/core/random.hpp"
+#include "packlab/core/thread_wait.hpp"
 #include "packlab/dem/bond/registry.hpp"
 #include "packlab/dem/contact/registry.hpp"
 #include "packlab/dem/engine.hpp"
@@ -228,9 +232,40 @@ void engine_step(benchmark::State& state) {
 }
 BENCHMARK(engine_step)->Arg(10000)->Unit(benchmark::kMillisecond);
 
+// What a step's synchronization costs (issue #14, thread scaling): one OpenMP parallel region of
+// two threads per iteration, and 1,000 barriers of two threads in one region, with the wait
+// policy the packlab program sets (passive unless OMP_WAIT_POLICY or GOMP_SPINCOUNT is given;
+// core/thread_wait.hpp). Real time per region or barrier; a step of the engine forks two
+// regions and passes one barrier (dem/step.cpp).
+void openmp_fork_join(benchmark::State& state) {
+  int sink = 0;
+  for (auto _ : state) {
+#pragma omp parallel num_threads(2)
+    {
+#pragma omp atomic
+      sink += omp_get_thread_num();
+    }
+  }
+  benchmark::DoNotOptimize(sink);
+}
+BENCHMARK(openmp_fork_join)->UseRealTime()->Unit(benchmark::kMicrosecond);
+
+void openmp_barrier(benchmark::State& state) {
+  constexpr int barriers = 1000;
+  for (auto _ : state) {
+#pragma omp parallel num_threads(2)
+    for (int k = 0; k < barriers; ++k) {
+#pragma omp barrier
+    }
+  }
+  state.SetItemsProcessed(state.iterations() * barriers);
+}
+BENCHMARK(openmp_barrier)->UseRealTime()->Unit(benchmark::kMillisecond);
+
 }  // namespace
 
 int main(int argc, char** argv) {
+  ensure_passive_thread_wait(argv);  // as the packlab program does
   register_pair_kernels();
   benchmark::Initialize(&argc, argv);
   if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;

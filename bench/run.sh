@@ -70,6 +70,10 @@ scale "shear" rate "'$BUILD/bench_shear' '$ROOT/examples/shear/data/vem_ns8000_n
 scale "VEM (5 void cycles)" vem_rate "'$BUILD/bench_vem' 1 8000 2000 0.4 5 0.2 fixed" \
   "'$BUILD/bench_vem' 2 8000 2000 0.4 5 0.2 fixed"
 echo "load average after: $(cut -d' ' -f1-3 /proc/loadavg)"
+# Where the second thread's time goes: perf samples per function at 1 and 2 threads, and what
+# one parallel region and one barrier cost (docs/engine.md, "Parallelism").
+echo; echo "== thread profile of relax (perf; bench/thread_profile.sh) =="
+bash "$ROOT/bench/thread_profile.sh" "$BUILD"
 
 # The other capabilities' benchmarks, each printing its own rates. BENCH_QUICK=1 keeps the
 # long end-to-end cases short (rates only).
