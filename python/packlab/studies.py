@@ -23,6 +23,7 @@ import itertools
 import json
 import math
 import os
+import re
 import shlex
 import shutil
 import subprocess
@@ -44,10 +45,12 @@ CHECKPOINT_NAME = "checkpoint.bin"
 # its checkpoint where --checkpoint says, `generate vem` its own: those start again.
 RESUMABLE = {"test compress", "test shear", "calibrate compress", "calibrate shear", "generate fba", "generate bd",
              "shake"}
-# The flags a resumed run takes besides --resume: output only, or the threads (the settings
-# come from the checkpoint).
+# The flags a resumed run takes besides --resume: output only (the settings, the threads
+# included, come from the checkpoint).
 RESUME_FLAGS = {"--quiet", "--no-plots", "--no-vtu"}
-RESUME_OPTIONS = {"--threads", "--adapt-threads"}
+# What packlab says (exit code 2) when it cannot resume from a checkpoint: damaged, of another
+# version or command (cli/checkpoint.cpp, the methods' "checkpoint is damaged").
+CHECKPOINT_REFUSED = re.compile(r"checkpoint\.bin|checkpoint is damaged")
 SPEC_KEYS = {"command", "args", "options", "seed_option", "out_option", "out_file", "stage", "sweep", "combine", "seed",
              "realizations", "seeds", "collect", "name"}
 STAGE_KEYS = {"name", "command", "args", "options", "seed_option", "out_option", "out_file"}
@@ -324,18 +327,12 @@ def _write_json(path, value):
 
 
 def resume_argv(unit):
-    """`COMMAND --resume DIR` with the unit's output and thread flags, when its folder holds the
-    checkpoint of a killed run of a resumable command; else None."""
+    """`COMMAND --resume DIR` with the unit's output flags, when its folder holds the checkpoint
+    of a killed run of a resumable command; else None."""
     command = unit.get("command", [])
     if " ".join(command) not in RESUMABLE or not os.path.isfile(os.path.join(unit["dir"], CHECKPOINT_NAME)):
         return None
-    argv, rest = [*command, "--resume", unit["dir"]], unit["argv"][len(command):]
-    for k, arg in enumerate(rest):
-        if arg in RESUME_FLAGS:
-            argv.append(arg)
-        elif arg in RESUME_OPTIONS and k + 1 < len(rest):
-            argv += [arg, rest[k + 1]]
-    return argv
+    return [*command, "--resume", unit["dir"], *[a for a in unit["argv"][len(command):] if a in RESUME_FLAGS]]
 
 
 def _clear_unit(directory):
@@ -382,17 +379,23 @@ def run_unit(unit, packlab, dep_results=()):
                     return 127, f"cannot run {packlab}: {error.strerror}"
 
         start = time.monotonic()
-        resume = resume_argv(unit)
+        argv = resume_argv(unit)
         code = None
-        if resume is not None:
-            # A killed run's checkpoint: go on from it. Refused (exit code 2: damaged, or of
-            # another packlab version): start clean like any other killed run.
-            code, stderr_text = run(resume, f"study: resuming from {CHECKPOINT_NAME}: {shlex.join(resume)}\n")
-            if code == 2:
-                code = None
+        if argv is not None:
+            # A killed run's checkpoint: go on from it. If packlab refuses the checkpoint
+            # (damaged, of another version), start clean like any other killed run; any other
+            # failure of the resumed run is the run's (a folder with a report is never emptied).
+            if os.path.exists(os.path.join(directory, FAILURE_NAME)):
+                os.remove(os.path.join(directory, FAILURE_NAME))
+            code, stderr_text = run(argv, f"study: resuming from {CHECKPOINT_NAME}: {shlex.join(argv)}\n")
+            if code == 2 and not is_done(directory):
+                with open(os.path.join(directory, STDERR_NAME), errors="replace") as f:
+                    if CHECKPOINT_REFUSED.search(f.read()):
+                        code = None
         if code is None:
             _clear_unit(directory)
-            code, stderr_text = run(unit["argv"])
+            argv = unit["argv"]
+            code, stderr_text = run(argv)
         seconds = time.monotonic() - start
         result["seconds"] = seconds
         out_file = unit.get("out_file")
@@ -411,7 +414,7 @@ def run_unit(unit, packlab, dep_results=()):
                 stderr_text = "".join(f.readlines()[-STDERR_TAIL_LINES:])
         if code == 0:
             stderr_text += "\n(exit code 0 but no report.json: the command does not write a report folder)"
-        error = {"exit_code": code, "stderr_tail": stderr_text.strip(), "command": shlex.join([packlab, *unit["argv"]])}
+        error = {"exit_code": code, "stderr_tail": stderr_text.strip(), "command": shlex.join([packlab, *argv])}
         _write_json(os.path.join(directory, FAILURE_NAME), error)
         result["status"] = "failed"
         result["error"] = f"exit code {code}: " + (error["stderr_tail"].splitlines() or [""])[-1]

@@ -41,6 +41,11 @@ FAKE = textwrap.dedent("""\
     if os.environ.get("FAKE_STARTED"):  # who runs it (the parent: a runner or a Dask worker) and where
         with open(os.environ["FAKE_STARTED"], "a") as f:
             f.write(str(os.getppid()) + " " + opts.get("out", "-") + "\\n")
+    if "resume" in opts:  # packlab COMMAND --resume DIR: refused with FAKE_RESUME_ERROR, else as a run into DIR
+        if os.environ.get("FAKE_RESUME_ERROR"):
+            print("packlab: error: " + os.environ["FAKE_RESUME_ERROR"], file=sys.stderr)
+            sys.exit(2)
+        opts["out"] = opts["resume"]
     time.sleep(float(opts.get("sleep", 0.05)))
     value = float(opts.get("value", 0))
     if "fail-above" in opts and value > float(opts["fail-above"]):
@@ -451,6 +456,54 @@ def test_killed_static_compression_resumes_from_its_checkpoint(tmp_path, cli):
     assert subprocess.run(command, env=env).returncode == 0
     assert "resuming" not in (unit / "study-stdout.txt").read_text()
     assert (unit / "curve.csv").read_bytes() == (tmp_path / "straight" / "curve.csv").read_bytes()
+
+
+@pytest.mark.parametrize("error, outcome", [("", "resumed"),
+                                            ("--resume = DIR: checkpoint.bin: damaged (checksum)", "started again"),
+                                            ("calibration did not converge", "failed")])
+def test_resume_of_a_killed_unit_with_a_checkpoint(tmp_path, fake, monkeypatch, error, outcome):
+    """A unit of a resumable command whose folder holds checkpoint.bin runs `COMMAND --resume DIR`
+    with its output flags only. A refused checkpoint (exit code 2 naming it) starts the unit
+    again; any other failure of the resumed run is the unit's, and nothing is run again."""
+    spec = write_spec(tmp_path / "s.toml", """\
+        command = "test compress"
+        args = ["model.vtu"]
+        seed_option = ""
+        seeds = [1]
+        collect = ["results.value"]
+        [options]
+        value = 2
+        threads = 2
+        adapt-threads = true
+        quiet = true
+        no-plots = true
+        """)
+    out = tmp_path / "study"
+    (unit,) = studies.plan(studies.load_spec(spec), str(out))[0].values()
+    os.makedirs(unit["dir"])
+    with open(os.path.join(unit["dir"], "checkpoint.bin"), "wb") as f:
+        f.write(b"saved state")
+    with open(os.path.join(unit["dir"], studies.FAILURE_NAME), "w") as f:
+        f.write("{}")  # left by the runner that saw the run killed
+    monkeypatch.setenv("FAKE_RESUME_ERROR", error)
+    started = tmp_path / "started.txt"
+    monkeypatch.setenv("FAKE_STARTED", str(started))
+    studies.study(spec, str(out), workers=1, packlab=fake["binary"], quiet=True)
+    status = read_csv(out / "tasks.csv")[0]["status"]
+    stdout = open(os.path.join(unit["dir"], studies.STDOUT_NAME)).read()
+    if outcome == "resumed":
+        assert status == "done" and runs(fake) == [unit["dir"]]
+        assert stdout.startswith(f"study: resuming from checkpoint.bin: test compress --resume {unit['dir']} "
+                                 "--quiet --no-plots\n")
+        assert not os.path.exists(os.path.join(unit["dir"], studies.FAILURE_NAME))
+    elif outcome == "started again":
+        assert status == "done" and runs(fake) == [unit["dir"]] and "resuming" not in stdout
+        assert not os.path.exists(os.path.join(unit["dir"], "checkpoint.bin"))
+    else:
+        assert status == "failed" and runs(fake) == [] and started.read_text().count("\n") == 1
+        assert os.path.exists(os.path.join(unit["dir"], "checkpoint.bin"))
+        failure = json.load(open(os.path.join(unit["dir"], studies.FAILURE_NAME)))
+        assert "--resume" in failure["command"] and "did not converge" in failure["stderr_tail"]
 
 
 def test_plot_study(tmp_path, fake):

@@ -62,7 +62,7 @@ void add_calibrate_compress(CLI::App& calibrate) {
           fmt::print("resumed: {} finished simulations replayed from {}\n", progress.done.size(),
                      checkpoint_path(dir).string());
         if (run.bulk_factor) {
-          // One simulation: resumable within it (the dynamic solver's checkpoints).
+          // One simulation: resumable within it (either solver's checkpoints).
           progress.attach({s.materials.silica_youngs_modulus, s.materials.silica_strength}, s.options.resume,
                           s.options.checkpoint);
           const mechanics::BulkFactorResult b = mechanics::compression_bulk_factor(model, s);

@@ -1,9 +1,11 @@
 // Checkpoints of the commands that can run for minutes and resume with `--resume DIR`
-// (generate fba, shake; generate vem keeps its own format, generate/vem.hpp).
+// (generate fba, generate bd, shake, relax, test compress, test shear, calibrate compress,
+// calibrate shear; generate vem keeps its own format, generate/vem.hpp).
 //
 // DIR/checkpoint.bin is written atomically (io::write_atomically: a kill -9 leaves the previous
 // checkpoint or the new one, never half of one) every output.checkpoint_seconds of wall time
-// and at the end of the run. Layout: the magic "PLCKPT01" (the format version), then one
+// and, for most, at the end of the run (test compress --solver static: at its fresh
+// factorizations only, mechanics/static_compression.cpp). Layout: the magic "PLCKPT01" (the format version), then one
 // checksummed section (binary::write_checked: size, FNV-1a hash, bytes) holding the command's
 // name, its settings (io::ConfigSchema::values() as JSON text), the input file and the state of
 // the method, which the method writes itself at a point between two of its iterations. A file
@@ -64,7 +66,7 @@ class CheckpointWriter {
 
 // A resumable calibration (calibrate compress, calibrate shear) wired to the command's
 // checkpoint: one after every finished simulation and one every checkpoint_seconds within a
-// simulation (when its test takes checkpoints: the dynamic solvers). The state is the finished
+// simulation (the dynamic solvers, and the static one at its fresh factorizations). The state is the finished
 // evaluations, then whether a simulation was running, its parameters and the test's own state.
 // With `resumed`, the returned progress replays the saved evaluations and hands the running
 // simulation's state to the test (mechanics::CalibrationProgress); `resumed` must outlive it.

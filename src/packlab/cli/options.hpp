@@ -153,7 +153,8 @@ CLI::App* add_option_command(CLI::App& parent, const std::string& name, const st
   if (resumable)
     cmd->add_option("--resume", command->resume,
                     "Continue the run whose checkpoint is in this folder, with its saved settings (--threads may "
-                    "change; the result does not depend on it)");
+                    "change; the DEM engine's result does not depend on it, the static solver's with CHOLMOD does "
+                    "in its last digits)");
   if (parts.plots) cmd->add_flag("--no-plots", command->no_plots, "Do not make PNG plots");
   cmd->add_flag("--quiet", command->quiet, "No progress output");
   const bool validate = parts.validate, takes_input = parts.input != nullptr;

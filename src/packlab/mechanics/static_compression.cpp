@@ -198,11 +198,12 @@ UniaxialCompressionResult run_static_uniaxial_compression(const Packing& bonded_
   double peak = 0.0, last_stress1 = 0.0;
   result.stop_reason = "reached max_strain";
   std::vector<std::size_t> broken_links;  // per break, its link
-  // Checkpoints (options.checkpoint): at the first verified solve after every
-  // checkpoint_breaks-th break the solver factorizes anew (whether or not a checkpoint is due,
-  // so that the points do not depend on the clock), and the state there is the broken links
-  // in order and what was recorded from them. A resumed run switches those links off in a new
-  // solver, whose first solve is that same fresh factorization.
+  // Checkpoints (options.checkpoint): at the first verified solve once another
+  // checkpoint_breaks bonds have broken, the state (the broken links in order and what was
+  // recorded from them, the breaks that solve decided included) is a checkpoint, and the next
+  // solve factorizes anew, whether or not a checkpoint is due (points taken from the clock
+  // would make the results depend on the machine's speed). A resumed run switches those links
+  // off in a new solver, whose first solve is that same fresh factorization.
   long next_checkpoint = options.checkpoint_breaks;
   StaticSolverStats earlier;  // of the runs before a resume
   double earlier_seconds = 0.0;
@@ -227,9 +228,16 @@ UniaxialCompressionResult run_static_uniaxial_compression(const Packing& bonded_
     binary::read(in, next_checkpoint, "next checkpoint");
     earlier = read_solver_stats(in);
     binary::read(in, earlier_seconds, "seconds");
-    if (broken_links.size() != result.break_strain.size() || result.curve.empty() ||
-        result.snapshots.size() > pending.size() || next_checkpoint < options.checkpoint_breaks)
-      fail_input("checkpoint is damaged: static compression state");
+    bool consistent = broken_links.size() == result.break_strain.size() && !result.curve.empty() &&
+                      result.curve.back().broken_bonds == broken_links.size() &&
+                      result.snapshots.size() <= pending.size() &&
+                      next_checkpoint > static_cast<long>(broken_links.size()) &&
+                      next_checkpoint <= static_cast<long>(broken_links.size()) + options.checkpoint_breaks;
+    for (double v : values) consistent = consistent && !std::isinf(v);  // nu is NaN with periodic sides
+    for (double v : result.break_strain) consistent = consistent && std::isfinite(v) && v > 0.0;
+    for (const UniaxialCompressionSnapshot& snap : result.snapshots)
+      consistent = consistent && snap.bond_strain.size() == model.bonds.size() && snap.particle_stress.size() == n;
+    if (!consistent) fail_input("checkpoint is damaged: static compression state");
     peak = values[0];
     result.strain_at_peak = values[1];
     result.youngs_modulus = values[2];

@@ -588,6 +588,7 @@ void StaticSolver::refactorize() {
   pending_downdates_.clear();  // the next factorization assembles the active links
   last_load_.clear();
   last_solution_.clear();
+  verified_ = false;
   drifted_ = false;
   unverified_solves_ = 0;
   strict_solves_ = 0;

@@ -109,9 +109,10 @@ struct UniaxialCompressionOptions {
   // (1 = each); a failed check rolls the analysis back to the last checked break (static_solver.hpp).
   int check_interval = 16;
   double check_tolerance = 1e-10;  // static: relative residual and energy-norm error of a check (API only)
-  // static: the first checked solve after every checkpoint_breaks-th break factorizes anew and
-  // is where a checkpoint is written (when checkpoint_seconds have passed): a resumed run
-  // starts from a fresh factorization there, as the uninterrupted run does, and gives its bits.
+  // static: at the first verified solve once another checkpoint_breaks bonds have broken, the
+  // state is a checkpoint (written when checkpoint_seconds have passed) and the next solve
+  // factorizes anew: a resumed run starts with that fresh factorization, as the uninterrupted
+  // run does, and gives its bits.
   long checkpoint_breaks = 2000;
   // Called at each curve point (progress); may be empty.
   std::function<void(const UniaxialCompressionPoint&)> on_point;
