@@ -36,54 +36,42 @@ double lateral_strain(const Packing& model, const std::vector<double>& q, int ax
 }
 
 // The solver's counts and times, carried through a checkpoint (a resumed run's solver starts at
-// zero; the report gives the whole run's).
+// zero; the report gives the whole run's): the factorizations, then these counts and times.
+constexpr std::array carried_counts{&StaticSolverStats::solves,    &StaticSolverStats::pcg_iterations,
+                                    &StaticSolverStats::downdates, &StaticSolverStats::backward_only_solves,
+                                    &StaticSolverStats::checks,    &StaticSolverStats::unchecked_solves,
+                                    &StaticSolverStats::rollbacks};
+constexpr std::array carried_times{&StaticSolverStats::assemble_seconds, &StaticSolverStats::factor_seconds,
+                                   &StaticSolverStats::solve_seconds, &StaticSolverStats::downdate_seconds,
+                                   &StaticSolverStats::check_seconds};
+
 void write_solver_stats(std::ostream& out, const StaticSolverStats& st) {
-  binary::write(out, std::array<long, 8>{st.factorizations, st.solves, st.pcg_iterations, st.downdates,
-                                         st.backward_only_solves, st.checks, st.unchecked_solves, st.rollbacks});
-  binary::write(out, std::array<double, 5>{st.assemble_seconds, st.factor_seconds, st.solve_seconds,
-                                           st.downdate_seconds, st.check_seconds});
+  binary::write(out, static_cast<long>(st.factorizations));
+  for (auto count : carried_counts) binary::write(out, st.*count);
+  for (auto time : carried_times) binary::write(out, st.*time);
+}
+
+StaticSolverStats read_solver_stats(std::istream& in) {
+  StaticSolverStats st;
+  long factorizations = 0;
+  binary::read(in, factorizations, "solver counts");
+  bool valid = factorizations >= 0 && factorizations < (1L << 31);
+  st.factorizations = static_cast<int>(factorizations);
+  for (auto count : carried_counts) {
+    binary::read(in, st.*count, "solver counts");
+    valid = valid && st.*count >= 0;
+  }
+  for (auto time : carried_times) binary::read(in, st.*time, "solver times");
+  if (!valid) fail_input("checkpoint is damaged: solver counts");
+  return st;
 }
 
 // The counts and times of two stretches of one run (before and after a resume).
 StaticSolverStats add_counts(StaticSolverStats a, const StaticSolverStats& b) {
   a.factorizations += b.factorizations;
-  a.solves += b.solves;
-  a.pcg_iterations += b.pcg_iterations;
-  a.downdates += b.downdates;
-  a.backward_only_solves += b.backward_only_solves;
-  a.checks += b.checks;
-  a.unchecked_solves += b.unchecked_solves;
-  a.rollbacks += b.rollbacks;
-  a.assemble_seconds += b.assemble_seconds;
-  a.factor_seconds += b.factor_seconds;
-  a.solve_seconds += b.solve_seconds;
-  a.downdate_seconds += b.downdate_seconds;
-  a.check_seconds += b.check_seconds;
+  for (auto count : carried_counts) a.*count += b.*count;
+  for (auto time : carried_times) a.*time += b.*time;
   return a;
-}
-
-StaticSolverStats read_solver_stats(std::istream& in) {
-  std::array<long, 8> counts{};
-  std::array<double, 5> seconds{};
-  binary::read(in, counts, "solver counts");
-  binary::read(in, seconds, "solver times");
-  for (long c : counts)
-    if (c < 0) fail_input("checkpoint is damaged: solver counts");
-  StaticSolverStats st;
-  st.factorizations = static_cast<int>(counts[0]);
-  st.solves = counts[1];
-  st.pcg_iterations = counts[2];
-  st.downdates = counts[3];
-  st.backward_only_solves = counts[4];
-  st.checks = counts[5];
-  st.unchecked_solves = counts[6];
-  st.rollbacks = counts[7];
-  st.assemble_seconds = seconds[0];
-  st.factor_seconds = seconds[1];
-  st.solve_seconds = seconds[2];
-  st.downdate_seconds = seconds[3];
-  st.check_seconds = seconds[4];
-  return st;
 }
 
 }  // namespace
