@@ -195,6 +195,17 @@ UniaxialCompressionResult run_static_uniaxial_compression(const Packing& bonded_
   long next_checkpoint = options.checkpoint_breaks;
   StaticSolverStats earlier;  // of the runs before a resume
   double earlier_seconds = 0.0;
+  auto seconds_so_far = [&] {
+    return earlier_seconds + std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  };
+  // A bond breaks (or broke before a resume): out of the solver and the model, its place recorded.
+  auto take_out = [&](std::size_t k) {
+    const auto b = static_cast<std::size_t>(links.bond[k]);
+    solver.deactivate(k);
+    model.bonds.state[b] = 1;
+    const Vec3 mid = model.position[static_cast<std::size_t>(links.i[k])] + 0.5 * links.branch[k];
+    result.breaks.push_back({b, nan, model.box.wrap(mid)});
+  };
   const auto save = [&](std::ostream& out) {
     binary::write_vector(out, broken_links);
     binary::write_vector(out, result.break_strain);
@@ -203,7 +214,7 @@ UniaxialCompressionResult run_static_uniaxial_compression(const Packing& bonded_
     binary::write(out, std::array<double, 4>{peak, result.strain_at_peak, result.youngs_modulus, result.poisson_ratio});
     binary::write(out, next_checkpoint);
     write_solver_stats(out, add_counts(solver.stats(), earlier));
-    binary::write(out, earlier_seconds + std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
+    binary::write(out, seconds_so_far());
   };
   if (options.resume != nullptr) {
     std::istream& in = *options.resume;
@@ -234,11 +245,7 @@ UniaxialCompressionResult run_static_uniaxial_compression(const Packing& bonded_
     for (std::size_t k : broken_links) {
       if (k >= links.size() || links.bond[k] < 0 || !solver.active(k))
         fail_input("checkpoint is damaged: a broken link of another model");
-      const auto b = static_cast<std::size_t>(links.bond[k]);
-      solver.deactivate(k);
-      model.bonds.state[b] = 1;
-      const Vec3 mid = model.position[static_cast<std::size_t>(links.i[k])] + 0.5 * links.branch[k];
-      result.breaks.push_back({b, nan, model.box.wrap(mid)});
+      take_out(k);
     }
     intact_bonds -= broken_links.size();
   } else {
@@ -344,11 +351,7 @@ UniaxialCompressionResult run_static_uniaxial_compression(const Packing& bonded_
       result.strain_at_peak = break_strain;
     }
     for (std::size_t k : critical) {
-      const auto b = static_cast<std::size_t>(links.bond[k]);
-      solver.deactivate(k);
-      model.bonds.state[b] = 1;
-      const Vec3 mid = model.position[static_cast<std::size_t>(links.i[k])] + 0.5 * links.branch[k];
-      result.breaks.push_back({b, nan, model.box.wrap(mid)});
+      take_out(k);
       result.break_strain.push_back(break_strain);
       broken_links.push_back(k);
     }
@@ -395,7 +398,7 @@ UniaxialCompressionResult run_static_uniaxial_compression(const Packing& bonded_
   for (std::size_t k = 0; k < n; ++k)
     model.position[k] += last * Vec3{unit_q[6 * k], unit_q[6 * k + 1], unit_q[6 * k + 2]};
   result.model = std::move(model);
-  result.seconds = earlier_seconds + std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  result.seconds = seconds_so_far();
   return result;
 }
 
