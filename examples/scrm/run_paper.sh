@@ -67,7 +67,7 @@ for r in rows("diagnosis"):
         case += f"-M{r['final-shakes']}"
     if r["blocks-per-cycle"] != "false":
         case += f"-bpc{r['blocks-per-cycle']}"
-    link(f"diagnosis/runs/generate-{r['task']}", f"diag-{case}-c0.575/r{r['seed']}")
+    link(f"diagnosis/runs/generate-{r['task']}", f"diag-{case}-c{r['phi']}/r{r['seed']}")
 for r in rows("mstudy"):
     link(f"mstudy/runs/scrm-{r['task']}", f"bi-scrm-M{r['final-shakes']}-c0.6/r{r['seed']}")
 for r in rows("bi7000"):

@@ -44,11 +44,12 @@ def mono_cases(out):
         cases[f"mono-scrm-c{c}"] = (c, "scrm", "metropolis (N_sh = 150)", 0.02, 10, 5)
         cases[f"mono-scrm-freest-c{c}"] = (c, "scrm", "freest (N_sh = 150)", 0.02, 10, 5)
         cases[f"mono-scrm-metropolis1-c{c}"] = (c, "scrm", "metropolis (N_sh = 1)", 0.02, 10, 5)
-    for g in ("0.005", "0.1"):
-        cases[f"diag-ls-G{g}-c0.575"] = ("0.575", "ls", "", float(g), "", "")
-        cases[f"diag-scrm-G{g}-c0.575"] = ("0.575", "scrm", "metropolis (N_sh = 150)", float(g), 10, 5)
-    cases["diag-scrm-G0.02-M60-c0.575"] = ("0.575", "scrm", "metropolis (N_sh = 150)", 0.02, 60, 5)
-    cases["diag-scrm-G0.02-bpc1-c0.575"] = ("0.575", "scrm", "metropolis (N_sh = 150)", 0.02, 10, 1)
+    for c in C_VALUES:  # examples/study/scrm_diagnosis.toml
+        for g in ("0.005", "0.1"):
+            cases[f"diag-ls-G{g}-c{c}"] = (c, "ls", "", float(g), "", "")
+            cases[f"diag-scrm-G{g}-c{c}"] = (c, "scrm", "metropolis (N_sh = 150)", float(g), 10, 5)
+        cases[f"diag-scrm-G0.02-M60-c{c}"] = (c, "scrm", "metropolis (N_sh = 150)", 0.02, 60, 5)
+        cases[f"diag-scrm-G0.02-bpc1-c{c}"] = (c, "scrm", "metropolis (N_sh = 150)", 0.02, 10, 1)
     return {k: v for k, v in cases.items() if os.path.isdir(os.path.join(out, k))}
 
 

@@ -1,8 +1,11 @@
 // packlab.compression_test / packlab.calibrate_compress / packlab.fit_porosity_law: the uniaxial
 // compression test of a bonded model (mechanics/uniaxial_compression.hpp), its calibration
 // (mechanics/compression_calibration.hpp, eq. 18-20) and the porosity laws (analyze/porosity_laws.hpp) from Python.
+#include "packlab/mechanics/uniaxial_compression.hpp"
+
 #include <fmt/format.h>
 
+#include <cmath>
 #include <cstdint>
 #include <utility>
 
@@ -15,7 +18,6 @@
 #include "packlab/io/options.hpp"
 #include "packlab/mechanics/compression_calibration.hpp"
 #include "packlab/mechanics/opal_materials.hpp"
-#include "packlab/mechanics/uniaxial_compression.hpp"
 
 namespace packlab::python {
 
@@ -32,8 +34,10 @@ void finish_setup(mechanics::UniaxialCompressionSetup& s, const Packing& model) 
 
 void bind_uniaxial_compression(py::module_& m) {
   using mechanics::UniaxialCompressionResult;
-  py::class_<UniaxialCompressionResult>(m, "UniaxialCompressionResult", "Result of packlab.compression_test (SI units).")
-      .def_readonly("youngs_modulus", &UniaxialCompressionResult::youngs_modulus, "Young's modulus (max-tangent fit) [Pa]")
+  py::class_<UniaxialCompressionResult>(m, "UniaxialCompressionResult",
+                                        "Result of packlab.compression_test (SI units).")
+      .def_readonly("youngs_modulus", &UniaxialCompressionResult::youngs_modulus,
+                    "Young's modulus (max-tangent fit) [Pa]")
       .def_readonly("strength", &UniaxialCompressionResult::strength, "Peak stress [Pa]")
       .def_readonly("strain_at_peak", &UniaxialCompressionResult::strain_at_peak)
       .def_readonly("broken_bonds", &UniaxialCompressionResult::broken_bonds)
@@ -52,7 +56,10 @@ void bind_uniaxial_compression(py::module_& m) {
       .def_readonly("model", &UniaxialCompressionResult::model, "The model after the test (bond states)")
       .def_readonly("seconds", &UniaxialCompressionResult::seconds)
       .def_property_readonly(
-          "fit_window", [](const UniaxialCompressionResult& r) { return std::make_pair(r.modulus.strain_begin, r.modulus.strain_end); },
+          "fit_window",
+          [](const UniaxialCompressionResult& r) {
+            return std::make_pair(r.modulus.strain_begin, r.modulus.strain_end);
+          },
           "Strain range of the modulus fit")
       .def_property_readonly(
           "curve", [](const UniaxialCompressionResult& r) { return columns_dict(mechanics::curve_columns(r.curve)); },
@@ -81,13 +88,18 @@ void bind_uniaxial_compression(py::module_& m) {
             py::list out;
             for (const auto& s : r.snapshots) {
               py::dict d;
+              if (std::isnan(s.requested_stress))
+                d["requested_strain"] = s.requested_strain;
+              else
+                d["requested_stress"] = s.requested_stress;
               d["strain"] = s.strain;
               d["stress"] = s.stress;
               d["bond_strain"] = to_numpy(std::vector<double>(s.bond_strain));
               std::vector<double> flat;
               for (const auto& a : s.particle_stress) flat.insert(flat.end(), a.begin(), a.end());
               py::array stress = to_numpy(std::move(flat));
-              d["particle_stress"] = stress.attr("reshape")(py::make_tuple(static_cast<py::ssize_t>(s.particle_stress.size()), 3, 3));
+              d["particle_stress"] =
+                  stress.attr("reshape")(py::make_tuple(static_cast<py::ssize_t>(s.particle_stress.size()), 3, 3));
               py::list types;
               for (const auto& t : analyze::stress_by_type(r.model, s.particle_stress))
                 types.append(py::dict(py::arg("type") = t.type, py::arg("particles") = t.particles,
@@ -97,10 +109,11 @@ void bind_uniaxial_compression(py::module_& m) {
             }
             return out;
           },
-          "Snapshots at snapshot_strains: strain, stress, bond_strain, particle_stress (N x 3 x 3), stress_by_type")
+          "Snapshots at snapshot_strains and snapshot_stresses (in the order taken): requested_strain or "
+          "requested_stress, strain, stress, bond_strain, particle_stress (N x 3 x 3), stress_by_type")
       .def("__repr__", [](const UniaxialCompressionResult& r) {
-        return fmt::format("<UniaxialCompressionResult: E = {:.4g} Pa, strength = {:.4g} Pa, {} broken bonds>", r.youngs_modulus,
-                           r.strength, r.broken_bonds);
+        return fmt::format("<UniaxialCompressionResult: E = {:.4g} Pa, strength = {:.4g} Pa, {} broken bonds>",
+                           r.youngs_modulus, r.strength, r.broken_bonds);
       });
 
   mechanics::UniaxialCompressionSetup test_defaults;
@@ -122,7 +135,9 @@ is called at most every progress_interval seconds.
         finish_setup(s, model);
         ProgressCallback callback(progress, progress_interval);
         if (!progress.is_none())
-          s.options.on_point = [&](const mechanics::UniaxialCompressionPoint& p) { callback.tick(false, p.strain, p.stress); };
+          s.options.on_point = [&](const mechanics::UniaxialCompressionPoint& p) {
+            callback.tick(false, p.strain, p.stress);
+          };
         py::gil_scoped_release nogil;
         return mechanics::run_uniaxial_compression(model, s.options);
       },

@@ -39,14 +39,19 @@ def test_glued_plate_gives_the_closed_form_modulus_of_a_simple_cubic_column():
     m = math.pi / 4 * (E + math.sqrt(2) * (E + g) + 4 * (E + 2 * g) / (3 * math.sqrt(3)))
     calls = []
     r = packlab.compression_test(sc_column(), bond_strength=math.inf, strain_rate=1e6, max_strain=0.003, samples=50,
-                         snapshot_strains=[0.002], progress=lambda strain, stress: calls.append(strain),
-                         progress_interval=0.0)
+                         snapshot_strains=[0.002], snapshot_stresses=[0.5 * m * 0.003, 10 * m * 0.003],
+                         progress=lambda strain, stress: calls.append(strain), progress_interval=0.0)
     assert r.youngs_modulus == pytest.approx(m, rel=2e-3)
     assert r.broken_bonds == 0 and r.fixed_particles == 18
     c = r.curve
     assert c["stress"][-1] == pytest.approx(m * c["strain"][-1], rel=2e-3)
     assert calls and calls[-1] <= 0.003 + 1e-9
-    (snap,) = r.snapshots
+    # The stress request (half the final stress) comes first, at the first point reaching it; the
+    # one never reached gives none.
+    by_stress, snap = r.snapshots
+    assert by_stress["requested_stress"] == 0.5 * m * 0.003 and snap["requested_strain"] == 0.002
+    first = int(np.argmax(c["stress"] >= 0.5 * m * 0.003))
+    assert by_stress["strain"] == c["strain"][first] and by_stress["stress"] == c["stress"][first]
     # Every level of the column is compressed alike: bond strains <= 0 (in-plane ones 0), particle stress
     # sigma_zz negative (compressive) in the free particles.
     strain = snap["bond_strain"]

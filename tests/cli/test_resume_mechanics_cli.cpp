@@ -117,8 +117,17 @@ TEST(ResumeMechanicsCli, TestCompressKilledTwiceAndResumedEqualsUninterruptedRun
                                  model +
                                      " --bond-youngs-modulus 6.53e9 --bond-poisson-ratio 0.17 --bond-strength 94.3e6"
                                      " --bond-compressive-breakage --strain-rate 4e6 --max-strain 0.03"
-                                     " --snapshot-strains 0.005,0.02 --samples 200 --threads 1",
+                                     " --snapshot-strains 0.005,0.02 --snapshot-stresses 100e6,400e6,300e6,1e9"
+                                     " --samples 200 --threads 1",
                                  60, 70);
+  // The stresses are reached before the first kill (100 MPa), between the kills (300) and after
+  // them (400); 1 GPa never: four strain and stress snapshots in the order of the loading.
+  const auto report = nlohmann::json::parse(read_bytes(dir.path() / "straight" / "report.json"));
+  ASSERT_EQ(report["snapshots"].size(), 5u) << report["snapshots"].dump();
+  EXPECT_EQ(report["snapshots"][0].value("requested_stress", 0.0), 100e6);
+  EXPECT_EQ(report["snapshots"][1].value("requested_strain", 0.0), 0.005);
+  EXPECT_EQ(report["snapshots"][2].value("requested_stress", 0.0), 300e6);
+  EXPECT_EQ(report["snapshots"][4].value("requested_stress", 0.0), 400e6);
 }
 
 TEST(ResumeMechanicsCli, TestShearKilledTwiceAndResumedEqualsUninterruptedRun) {
@@ -242,11 +251,15 @@ TEST(ResumeMechanicsCli, StaticCompressionKilledTwiceAndResumedEqualsUninterrupt
                                  model +
                                      " --bond-youngs-modulus 6.53e9 --bond-poisson-ratio 0.17 --bond-strength 94.3e6"
                                      " --solver static --max-strain 0.2 --stop-drop 0.5 --checkpoint-breaks 4"
-                                     " --check-interval 3 --snapshot-strains 0.005,0.04 --threads 1",
+                                     " --check-interval 3 --snapshot-strains 0.005,0.04"
+                                     " --snapshot-stresses 100e6,160e6,170e6 --threads 1",
                                  3, 2, true, 1);
   const auto straight = nlohmann::json::parse(read_bytes(dir.path() / "straight" / "report.json"));
   // Enough breaks for five checkpoints, and the factorizations they make.
   EXPECT_GE(straight["broken_bonds"].get<long>(), 20) << straight.dump();
+  // 100 and 160 MPa on the first branches (the envelope peaks near 163 MPa at the second break),
+  // 170 MPa never: two stress snapshots beside the two strain snapshots, restored on resume.
+  EXPECT_EQ(straight["snapshots"].size(), 4u) << straight["snapshots"].dump();
   const auto help = run_packlab("test compress --help");
   EXPECT_NE(help.output.find("--solver static at the first of its fresh factorizations"), std::string::npos)
       << help.output;

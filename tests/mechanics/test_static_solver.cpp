@@ -329,6 +329,67 @@ TEST(StaticSolver, AgreesWithTheDynamicCompressionTestOnARandomBondedSample) {
   EXPECT_NEAR(quasi_static.strength, dynamic.strength, 0.10 * dynamic.strength);
 }
 
+// Snapshots at applied stresses (Table 2's 31.3 MPa): on the elastic column a stress request is
+// the strain request at stress / E, field for field; past the first break it lies on the first
+// linear branch whose break load reaches it, carries the requested stress itself, and holds that
+// branch's network (its broken bonds NaN in the bond strains). A stress the run never reaches gives no snapshot.
+TEST(StaticSolver, StressSnapshotsLieOnTheFirstBranchThatCarriesTheirStress) {
+  const Packing column = test::bonded_lattice(generate::LatticeType::sc, {3, 3, 8}, r, 1.75);
+  UniaxialCompressionOptions o = compression_options("static");
+  o.max_strain = 0.01;
+  const double stress = 20e6, strain = stress / sc_modulus();
+  o.snapshot_stresses = {stress};
+  o.snapshot_strains = {strain};
+  const UniaxialCompressionResult elastic = run_uniaxial_compression(column, o);
+  ASSERT_EQ(elastic.snapshots.size(), 2u);
+  // In the order of their strains: the measured E lies above the closed form in its last digits.
+  const bool stress_first = std::isnan(elastic.snapshots[0].requested_strain);
+  const UniaxialCompressionSnapshot& by_strain = elastic.snapshots[stress_first ? 1 : 0];
+  const UniaxialCompressionSnapshot& by_stress = elastic.snapshots[stress_first ? 0 : 1];
+  EXPECT_LE(elastic.snapshots[0].strain, elastic.snapshots[1].strain);
+  EXPECT_EQ(by_strain.requested_strain, strain);
+  EXPECT_TRUE(std::isnan(by_strain.requested_stress));
+  EXPECT_EQ(by_stress.requested_stress, stress);
+  EXPECT_TRUE(std::isnan(by_stress.requested_strain));
+  EXPECT_NEAR(by_stress.stress, stress, 1e-12 * stress);
+  EXPECT_NEAR(by_stress.strain, stress / elastic.youngs_modulus, 1e-12 * strain);
+  EXPECT_NEAR(elastic.youngs_modulus, sc_modulus(), 1e-6 * sc_modulus());
+  ASSERT_EQ(by_stress.particle_stress.size(), by_strain.particle_stress.size());
+  for (std::size_t k = 0; k < by_stress.particle_stress.size(); ++k)
+    EXPECT_NEAR(by_stress.particle_stress[k][8], by_strain.particle_stress[k][8],
+                1e-6 * std::abs(by_strain.particle_stress[k][8]) + 1e-9 * stress);
+
+  const Packing p = random_bonded_sample(300, 3);
+  UniaxialCompressionSetup setup;
+  setup.options.threads = 1;
+  setup.options.max_strain = 0.05;
+  setup.finish(p);
+  setup.options.solver = "static";
+  for (auto& b : setup.options.bond_materials) b.compressive_breakage = true;
+  const UniaxialCompressionResult first = run_uniaxial_compression(p, setup.options);
+  ASSERT_GT(first.broken_bonds, 10u);
+  ASSERT_GE(first.curve.size(), 4u);
+  // A load above the first break's and below the peak, and one above the peak.
+  const double load = 0.5 * (first.curve[1].stress + first.strength);
+  ASSERT_GT(load, first.curve[1].stress);
+  setup.options.snapshot_stresses = {2.0 * first.strength, load};
+  const UniaxialCompressionResult res = run_uniaxial_compression(p, setup.options);
+  ASSERT_EQ(res.snapshots.size(), 1u);
+  const UniaxialCompressionSnapshot& s = res.snapshots[0];
+  EXPECT_EQ(s.requested_stress, load);
+  EXPECT_NEAR(s.stress, load, 1e-12 * load);
+  // Branch j (from the curve's point j - 1) ends at curve[j]: the first to reach the load.
+  std::size_t j = 1;
+  while (res.curve[j].stress < load) ++j;
+  ASSERT_GT(j, 1u);
+  EXPECT_LE(s.strain, res.curve[j].strain);
+  EXPECT_GT(s.strain, 0.0);
+  const auto broken = static_cast<std::size_t>(
+      std::count_if(s.bond_strain.begin(), s.bond_strain.end(), [](double e) { return std::isnan(e); }));
+  EXPECT_EQ(broken, res.curve[j - 1].broken_bonds);
+  EXPECT_GT(res.curve[j - 1].broken_bonds, 0u);
+}
+
 TEST(StaticSolver, BackendsAgree) {
   const std::vector<std::string> backends = static_solver_backends();
   if (backends.size() < 2) GTEST_SKIP() << "built without CHOLMOD";

@@ -121,6 +121,30 @@ TEST(UniaxialCompression, HalvingTheStrainRateChangesNeitherModulusNorStrength) 
   EXPECT_NEAR(fast.strength, slow.strength, 0.05 * slow.strength);
 }
 
+// A snapshot requested at an applied stress is taken at the first curve point at or above it,
+// once; one never reached gives none.
+TEST(UniaxialCompression, StressSnapshotsAreTakenAtTheFirstPointThatReachesThem) {
+  UniaxialCompressionOptions o = options();
+  o.max_strain = 0.003;
+  o.strain_rate = 1e6;
+  o.samples = 50;
+  const double top = 0.003 * sc_modulus();
+  o.snapshot_stresses = {0.5 * top, 2.0 * top};
+  o.snapshot_strains = {0.001};
+  const UniaxialCompressionResult res = run_uniaxial_compression(sc_column(8), o);
+  ASSERT_EQ(res.snapshots.size(), 2u);
+  EXPECT_EQ(res.snapshots[0].requested_strain, 0.001);
+  const UniaxialCompressionSnapshot& s = res.snapshots[1];
+  EXPECT_EQ(s.requested_stress, 0.5 * top);
+  EXPECT_TRUE(std::isnan(s.requested_strain));
+  std::size_t k = 0;
+  while (res.curve[k].stress < 0.5 * top) ++k;
+  EXPECT_EQ(s.strain, res.curve[k].strain);
+  EXPECT_EQ(s.stress, res.curve[k].stress);
+  EXPECT_NEAR(s.stress, 0.5 * top, 0.05 * top);  // 50 points over the run: within one point's step
+  EXPECT_EQ(s.particle_stress.size(), res.particles);
+}
+
 TEST(UniaxialCompression, BadOptionsAreInputErrors) {
   const Packing column = sc_column(4);
   UniaxialCompressionOptions o = options();
@@ -128,6 +152,9 @@ TEST(UniaxialCompression, BadOptionsAreInputErrors) {
   EXPECT_THROW(run_uniaxial_compression(column, o), InputError);
   o = options();
   o.strain_rate = -1;
+  EXPECT_THROW(run_uniaxial_compression(column, o), InputError);
+  o = options();
+  o.snapshot_stresses = {-1e6};
   EXPECT_THROW(run_uniaxial_compression(column, o), InputError);
   Packing unbonded = column;
   unbonded.bonds = Bonds{};

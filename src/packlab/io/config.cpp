@@ -417,6 +417,9 @@ void ConfigSchema::validate() const {
     if (!f.range) continue;
     const nlohmann::json v = f.value();
     if (v.is_number()) require_in_range("", f.key, v.get<double>(), *f.range, f.unit);
+    if (v.is_array())  // a list of numbers: each in the range
+      for (const nlohmann::json& e : v)
+        if (e.is_number()) require_in_range("", f.key, e.get<double>(), *f.range, f.unit);
   }
 }
 

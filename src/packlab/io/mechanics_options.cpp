@@ -219,7 +219,12 @@ void add_compression_test_keys(ConfigSchema& schema, mechanics::UniaxialCompress
       .range({0.0, 0.1, true, false})
       .numbers("snapshot_strains", s.snapshot_strains,
                "Strains at which bond strains and particle stresses are recorded (Fig. 7, Table 2), each in "
-               "(0, max_strain]");
+               "(0, max_strain]")
+      .numbers("snapshot_stresses", s.snapshot_stresses,
+               "Applied stresses at which the same snapshots are recorded, each where the stress first reaches "
+               "it (Table 2: 31.3e6); a stress never reached gives none")
+      .unit("Pa")
+      .range(ranges::positive);
   add_uniaxial_compression_options(schema, s.options);
 }
 

@@ -137,7 +137,11 @@ nlohmann::json uniaxial_compression_summary(const mechanics::UniaxialCompression
       r.seconds > 0 ? static_cast<double>(r.bonds) * static_cast<double>(r.steps) / r.seconds : 0.0;
   nlohmann::json snaps = nlohmann::json::array();
   for (const auto& s : r.snapshots) {
-    nlohmann::json sj{{"requested_strain", s.requested_strain}, {"strain", s.strain}, {"stress", s.stress}};
+    nlohmann::json sj{{"strain", s.strain}, {"stress", s.stress}};
+    if (std::isnan(s.requested_stress))
+      sj["requested_strain"] = s.requested_strain;
+    else
+      sj["requested_stress"] = s.requested_stress;
     nlohmann::json types = nlohmann::json::array();
     for (const auto& t : analyze::stress_by_type(r.model, s.particle_stress))
       types.push_back({{"type", t.type},

@@ -42,6 +42,7 @@ void UniaxialCompressionSetup::finish(const Packing& model) {
   options.types = opal_particle_types(materials);
   options.bond_materials = opal_bond_materials(materials);
   options.snapshot_strains = snapshot_strains;
+  options.snapshot_stresses = snapshot_stresses;
   if (strain_rate > 0.0) {
     options.strain_rate = strain_rate;
     return;

@@ -40,12 +40,13 @@ std::vector<dem::ElasticBond::Params> opal_bond_materials(const OpalMaterials& m
 
 // Everything a compression run of an opal-type model needs, as the command line sets it:
 // materials, test options and the rate rule. finish(model) fills options.types,
-// options.bond_materials, options.snapshot_strains and options.strain_rate.
+// options.bond_materials, options.snapshot_strains, options.snapshot_stresses and options.strain_rate.
 struct UniaxialCompressionSetup {
   OpalMaterials materials;
   UniaxialCompressionOptions options;
   std::vector<double> snapshot_strains;
-  double strain_rate = 0.0;  // [1/s]; 0 = automatic
+  std::vector<double> snapshot_stresses;  // [Pa]
+  double strain_rate = 0.0;               // [1/s]; 0 = automatic
   // Automatic rate: this strain per time an elastic wave needs to cross the sample,
   // H0 / c with c = sqrt(E_b / rho) of silica (DESIGN.md: quasi-static, shown rate-independent).
   double quasi_static = 1e-4;

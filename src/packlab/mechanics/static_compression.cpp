@@ -149,12 +149,9 @@ UniaxialCompressionResult run_static_uniaxial_compression(const Packing& bonded_
     return scan;
   };
 
-  std::vector<double> pending = options.snapshot_strains;
-  std::sort(pending.begin(), pending.end());
-  std::size_t next_snapshot = 0;
-  auto snapshot = [&](double requested, double strain, double stress) {
-    UniaxialCompressionSnapshot s;
-    s.requested_strain = requested;
+  PendingSnapshots pending(options);
+  // The snapshot `s` (its request set) of the current network at `strain`.
+  auto snapshot = [&](UniaxialCompressionSnapshot s, double strain, double stress) {
     s.strain = strain;
     s.stress = stress;
     std::vector<double> qs(unit_q.size());
@@ -229,7 +226,6 @@ UniaxialCompressionResult run_static_uniaxial_compression(const Packing& bonded_
     binary::read(in, earlier_seconds, "seconds");
     bool consistent = broken_links.size() == result.break_strain.size() && !result.curve.empty() &&
                       result.curve.back().broken_bonds == broken_links.size() &&
-                      result.snapshots.size() <= pending.size() &&
                       next_checkpoint > static_cast<long>(broken_links.size()) &&
                       next_checkpoint <= static_cast<long>(broken_links.size()) + options.checkpoint_breaks;
     for (double v : values) consistent = consistent && !std::isinf(v);  // nu is NaN with periodic sides
@@ -241,7 +237,7 @@ UniaxialCompressionResult run_static_uniaxial_compression(const Packing& bonded_
     result.strain_at_peak = values[1];
     result.youngs_modulus = values[2];
     result.poisson_ratio = values[3];
-    next_snapshot = result.snapshots.size();
+    pending.resume(result.snapshots);
     for (std::size_t k : broken_links) {
       if (k >= links.size() || links.bond[k] < 0 || !solver.active(k))
         fail_input("checkpoint is damaged: a broken link of another model");
@@ -254,11 +250,17 @@ UniaxialCompressionResult run_static_uniaxial_compression(const Packing& bonded_
   // With solver checks every check_interval-th re-solve (static_solver.hpp), the state after
   // the last verified solve's decisions, to go back to when a check finds the factor drifted.
   struct Verified {
-    std::size_t curve = 0, breaks = 0, snapshots = 0, next_snapshot = 0, intact_bonds = 0;
+    std::size_t curve = 0, breaks = 0, snapshots = 0, next_strain = 0, next_stress = 0, intact_bonds = 0;
     double peak = 0.0, strain_at_peak = 0.0;
   } verified;
   auto save_verified = [&] {
-    verified = {result.curve.size(),  result.breaks.size(), result.snapshots.size(), next_snapshot, intact_bonds, peak,
+    verified = {result.curve.size(),
+                result.breaks.size(),
+                result.snapshots.size(),
+                pending.next_strain,
+                pending.next_stress,
+                intact_bonds,
+                peak,
                 result.strain_at_peak};
   };
   auto roll_back = [&] {
@@ -271,7 +273,8 @@ UniaxialCompressionResult run_static_uniaxial_compression(const Packing& bonded_
     result.break_strain.resize(verified.breaks);
     result.curve.resize(verified.curve);
     result.snapshots.resize(verified.snapshots);
-    next_snapshot = verified.next_snapshot;
+    pending.next_strain = verified.next_strain;
+    pending.next_stress = verified.next_stress;
     intact_bonds = verified.intact_bonds;
     peak = verified.peak;
     result.strain_at_peak = verified.strain_at_peak;
@@ -334,9 +337,23 @@ UniaxialCompressionResult run_static_uniaxial_compression(const Packing& bonded_
       roll_back();
       continue;
     }
-    while (next_snapshot < pending.size() && pending[next_snapshot] < break_strain) {
-      snapshot(pending[next_snapshot], pending[next_snapshot], pending[next_snapshot] * stress1);
-      ++next_snapshot;
+    // Requests this branch reaches: a strain below its break strain (and max_strain), an applied
+    // stress below its break load, each at the point of the branch that carries it; in the order
+    // of the strain along the branch.
+    const double branch_end = std::min(break_strain, options.max_strain);
+    for (;;) {
+      const bool strain_next =
+          pending.next_strain < pending.strains.size() && pending.strains[pending.next_strain] < break_strain;
+      const bool stress_next = stress1 > 0.0 && pending.next_stress < pending.stresses.size() &&
+                               pending.stresses[pending.next_stress] <= branch_end * stress1;
+      if (!strain_next && !stress_next) break;
+      const double stress_strain = stress_next ? pending.stresses[pending.next_stress] / stress1 : 0.0;
+      if (strain_next && (!stress_next || pending.strains[pending.next_strain] <= stress_strain)) {
+        const double e = pending.strains[pending.next_strain];
+        snapshot(pending.take_strain(), e, e * stress1);
+      } else {
+        snapshot(pending.take_stress(), stress_strain, stress_strain * stress1);
+      }
     }
     if (past_max_strain) {
       add_point(options.max_strain, stress1, energy1);
@@ -366,10 +383,10 @@ UniaxialCompressionResult run_static_uniaxial_compression(const Packing& bonded_
       break;
     }
   }
-  // Snapshots past the end: the network as it stands.
-  while (next_snapshot < pending.size()) {
-    const double s = pending[next_snapshot++];
-    snapshot(s, s, s * last_stress1);
+  // Strains past the end: the network as it stands (a stress never reached gives no snapshot).
+  while (pending.next_strain < pending.strains.size()) {
+    const double e = pending.strains[pending.next_strain];
+    snapshot(pending.take_strain(), e, e * last_stress1);
   }
   result.strength = peak;
   result.broken_bonds = result.breaks.size();

@@ -40,6 +40,22 @@ namespace packlab::mechanics {
 void write_compression_snapshots(std::ostream& out, const std::vector<UniaxialCompressionSnapshot>& snapshots);
 void read_compression_snapshots(std::istream& in, std::vector<UniaxialCompressionSnapshot>& snapshots);
 
+// The snapshots a compression run owes (both solvers): the requested strains and applied
+// stresses in increasing order, and how many of each have been taken.
+struct PendingSnapshots {
+  std::vector<double> strains, stresses;
+  std::size_t next_strain = 0, next_stress = 0;
+  explicit PendingSnapshots(const UniaxialCompressionOptions& options);
+  bool strain_due(double strain) const { return next_strain < strains.size() && strain >= strains[next_strain]; }
+  bool stress_due(double stress) const { return next_stress < stresses.size() && stress >= stresses[next_stress]; }
+  UniaxialCompressionSnapshot take_strain();  // the next strain request (requested_stress NaN)
+  UniaxialCompressionSnapshot take_stress();  // the next stress request (requested_strain NaN)
+  // After a resume: count the snapshots taken of each kind and give each stress snapshot its
+  // requested stress (a checkpoint stores a stress snapshot's requested strain as NaN, and the
+  // requests are taken in increasing order); InputError when they do not fit the requests.
+  void resume(std::vector<UniaxialCompressionSnapshot>& taken);
+};
+
 UniaxialCompressionResult run_static_uniaxial_compression(const Packing& bonded_model,
                                                           const UniaxialCompressionOptions& options);
 

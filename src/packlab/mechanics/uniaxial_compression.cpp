@@ -77,6 +77,39 @@ void read_compression_snapshots(std::istream& in, std::vector<UniaxialCompressio
   }
 }
 
+PendingSnapshots::PendingSnapshots(const UniaxialCompressionOptions& options)
+    : strains(options.snapshot_strains), stresses(options.snapshot_stresses) {
+  std::sort(strains.begin(), strains.end());
+  std::sort(stresses.begin(), stresses.end());
+}
+
+UniaxialCompressionSnapshot PendingSnapshots::take_strain() {
+  UniaxialCompressionSnapshot s;
+  s.requested_strain = strains[next_strain++];
+  return s;
+}
+
+UniaxialCompressionSnapshot PendingSnapshots::take_stress() {
+  UniaxialCompressionSnapshot s;
+  s.requested_strain = std::numeric_limits<double>::quiet_NaN();
+  s.requested_stress = stresses[next_stress++];
+  return s;
+}
+
+void PendingSnapshots::resume(std::vector<UniaxialCompressionSnapshot>& taken) {
+  next_strain = next_stress = 0;
+  for (UniaxialCompressionSnapshot& s : taken) {
+    if (std::isnan(s.requested_strain)) {
+      if (next_stress >= stresses.size()) fail_input("checkpoint is damaged: more snapshots than snapshot_stresses");
+      s.requested_stress = stresses[next_stress++];
+    } else {
+      if (next_strain >= strains.size() || s.requested_strain != strains[next_strain])
+        fail_input("checkpoint is damaged: a snapshot of a strain not in snapshot_strains");
+      ++next_strain;
+    }
+  }
+}
+
 dem::EngineConfig compression_engine_config(const UniaxialCompressionOptions& options) {
   dem::EngineConfig config;
   config.contact_law = "hertz_mindlin";
@@ -127,9 +160,7 @@ UniaxialCompressionResult run_uniaxial_compression(const Packing& bonded_model,
   const double total_time = options.max_strain / options.strain_rate;
   const auto total_steps = static_cast<long>(std::ceil(total_time / dt));
   const long interval = std::max(1L, total_steps / options.samples);
-  std::vector<double> pending = options.snapshot_strains;
-  std::sort(pending.begin(), pending.end());
-  std::size_t next_snapshot = 0;
+  PendingSnapshots pending(options);
   double peak = 0.0;
   result.stop_reason = "reached max_strain";
   const double t_start = engine.time();
@@ -144,8 +175,7 @@ UniaxialCompressionResult run_uniaxial_compression(const Packing& bonded_model,
     write_compression_snapshots(out, result.snapshots);
   };
   if (options.resume != nullptr) load_compression_state(*options.resume, engine, stopped, peak, result);
-  next_snapshot = result.snapshots.size();
-  if (next_snapshot > pending.size()) fail_input("checkpoint is damaged: more snapshots than snapshot_strains");
+  pending.resume(result.snapshots);
   while (!stopped && engine.step_count() < total_steps) {
     const long remaining = total_steps - engine.step_count();
     const long chunk = std::min(interval, remaining);
@@ -167,9 +197,9 @@ UniaxialCompressionResult run_uniaxial_compression(const Packing& bonded_model,
       peak = p.stress;
       result.strain_at_peak = p.strain;
     }
-    while (next_snapshot < pending.size() && p.strain >= pending[next_snapshot]) {
-      UniaxialCompressionSnapshot s;
-      s.requested_strain = pending[next_snapshot++];
+    // Requested strains and stresses reached at this point, each recorded once.
+    while (pending.strain_due(p.strain) || pending.stress_due(p.stress)) {
+      UniaxialCompressionSnapshot s = pending.strain_due(p.strain) ? pending.take_strain() : pending.take_stress();
       s.strain = p.strain;
       s.stress = p.stress;
       s.bond_strain = engine.bond_strains();

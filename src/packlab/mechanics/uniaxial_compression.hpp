@@ -71,8 +71,11 @@ struct UniaxialCompressionPoint {
 
 // State at a requested strain: bond strains (input bond order of the model as run; NaN for
 // failed bonds) and per-particle Cauchy stress (eq. 21, packing order, row-major 3x3).
+// A snapshot is requested either at a strain (requested_strain; requested_stress NaN) or at an
+// applied stress (requested_stress; requested_strain NaN): taken where the run first reaches it.
 struct UniaxialCompressionSnapshot {
   double requested_strain = 0.0;
+  double requested_stress = std::numeric_limits<double>::quiet_NaN();  // [Pa]
   double strain = 0.0;
   double stress = 0.0;
   std::vector<double> bond_strain;
@@ -95,7 +98,12 @@ struct UniaxialCompressionOptions {
   double time_step_safety = 0.2;
   long samples = 400;                    // curve points over max_strain (about)
   std::vector<double> snapshot_strains;  // strains for bond strain / particle stress snapshots
-  double modulus_lower = 0.05;           // see the header comment
+  // Applied stresses [Pa] for the same snapshots (Table 2 is at 31.3 MPa), each taken where the
+  // stress first reaches it: dynamic, at the first curve point at or above it; static, on the
+  // first linear branch whose break load reaches it, at the strain where that branch carries it
+  // exactly. A stress the run never reaches gives no snapshot.
+  std::vector<double> snapshot_stresses;
+  double modulus_lower = 0.05;  // see the header comment
   double modulus_window = 0.25;
   int threads = 1;
   bool adapt_threads = true;  // dynamic solver: dem::EngineConfig::adapt_threads

@@ -63,6 +63,7 @@ void UniaxialCompressionOptions::validate() const {
         "solve about the start cannot follow)");
   for (double s : snapshot_strains)
     require(s > 0.0 && s <= max_strain, "snapshot_strains", s, fmt::format("in (0, max_strain = {:g}]", max_strain));
+  for (double s : snapshot_stresses) require(s > 0.0 && std::isfinite(s), "snapshot_stresses", s, "> 0 Pa");
   if (types.empty()) fail_input("compression test: no particle type parameters given");
   if (bond_materials.empty()) fail_input("compression test: no bond material parameters given");
 }
