@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
 """Tables of the sample-size study (examples/opal/size_study.toml: bpm-inverse-opals §3.1.1,
-Figs. 4-5; FCC opal at D/d = 9.2, cross-sections 1-16 um^2 at the paper's scale, 3 or 4 pore
+Figs. 4-5; FCC opal at D/d = 9.2, cross-sections 2-16 um^2 at the paper's scale, 3 or 4 pore
 layers, FBA seeds 1-3, static solver, paper's bonds) from the study's tasks.csv:
 
   DATA/opal_size_study.csv         one row per sample: periods, pore layers, cross-section,
