@@ -12,8 +12,17 @@ periodic and with open sides. The paper's observations, made quantitative:
   cracks": the share of the breaks after the peak that fall in the densest horizontal band of
   a fifth of the sample's height (a horizontal crack: near 1; cracks along the load: near 0.2).
 
-Writes DATA/opal_fracture_pattern.csv (one row per side condition) and FIGURE (break positions
-projected on the x-z plane, in order of breaking, with the pores).
+* where along the load the breaks start: per pore layer (the layers of pore centres along z,
+  1 = next to the substrate; a bond belongs to the layer whose centre plane is nearest its
+  midpoint), the share of the breaks up to the peak and of all breaks against the share of the
+  bonds in that layer.
+
+Writes DATA/opal_fracture_pattern.csv (one row per side condition), DATA/opal_fracture_layers.csv
+(one row per side condition and pore layer) and FIGURE (break positions projected on the x-z
+plane, in order of breaking, with the pores).
+
+RUN_OUT holds one folder per sample, layersN (N pore layers: 3 and 4), each with opal/,
+periodic/ and open/; the figure shows the tallest sample.
 
 usage: fracture_pattern.py RUN_OUT [DATA] [FIGURE]"""
 
@@ -79,6 +88,22 @@ def bond_midpoints(model):
     return x[i] + 0.5 * d
 
 
+def pore_layers(centres, radius):
+    """The z of each layer of pore centres, bottom first (centres within 0.1 R in z are one layer)."""
+    layers = []
+    for z in np.sort(centres[:, 2]):
+        if not layers or z - layers[-1][-1] > 0.1 * radius:
+            layers.append([z])
+        else:
+            layers[-1].append(z)
+    return np.array([np.mean(layer) for layer in layers])
+
+
+def layer_of(z, layer_z):
+    """Index of the nearest layer plane to each z."""
+    return np.argmin(np.abs(np.asarray(z)[:, None] - layer_z[None, :]), axis=1)
+
+
 def densest_band(z, height):
     """Largest share of the values z in any window of width BAND x height."""
     z = np.sort(z)
@@ -94,14 +119,31 @@ def main(argv):
     run = argv[1]
     data = argv[2] if len(argv) > 2 else os.path.join(HERE, "..", "..", "docs", "data")
     figure = argv[3] if len(argv) > 3 else os.path.join(HERE, "..", "..", "docs", "img", "opal_fracture_pattern.png")
-    centres, pore_radius = read_pores(os.path.join(run, "opal", "pores.xyz"))
-    table = {k: [] for k in ("sides", "particles", "bonds", "pore_to_particle_diameter", "youngs_modulus",
+    # One sample per folder RUN_OUT/layersN (N pore layers); the figure shows the tallest.
+    samples = sorted((int(name[len("layers"):]), os.path.join(run, name)) for name in os.listdir(run)
+                     if name.startswith("layers") and name[len("layers"):].isdigit())
+    if not samples:
+        sys.exit(f"fracture_pattern: no layersN folder in {run}")
+    table = {k: [] for k in ("pore_layers", "sides", "particles", "bonds", "pore_to_particle_diameter", "youngs_modulus",
                              "strength", "breaks", "breaks_at_peak", "bonds_near_openings",
                              "early_breaks_near_openings", "enrichment", "late_breaks", "late_in_densest_band",
                              "substrate_breaks")}
+    layers = {k: [] for k in ("pore_layers", "sides", "layer", "layer_z", "bonds_share", "breaks_at_peak", "breaks_at_peak_share",
+                              "breaks", "breaks_share")}
+    for pore_layer_count, sample in samples:
+        centres, pore_radius = read_pores(os.path.join(sample, "opal", "pores.xyz"))
+        panels = sample_tables(sample, pore_layer_count, centres, pore_radius, table, layers)
+    write_tables(data, table, layers)
+    draw(figure, panels, centres, pore_radius)
+    return 0
+
+
+def sample_tables(sample, pore_layer_count, centres, pore_radius, table, layers):
+    """Adds the rows of one sample (both side conditions) to the tables; returns its panels."""
+    layer_z = None
     panels = []
     for sides in ("periodic", "open"):
-        out = os.path.join(run, sides)
+        out = os.path.join(sample, sides)
         with open(os.path.join(out, "report.json")) as f:
             res = json.load(f)
         with open(os.path.join(out, "curve.csv")) as f:
@@ -125,7 +167,7 @@ def main(argv):
         late = where[at_peak:]
         material = np.asarray(model.bonds.material)
         diameter = 2.0 * float(np.mean(np.asarray(model.radii)))
-        row = {"sides": sides, "particles": res["particles"], "bonds": res["bonds"],
+        row = {"pore_layers": pore_layer_count, "sides": sides, "particles": res["particles"], "bonds": res["bonds"],
                "pore_to_particle_diameter": 2.0 * pore_radius / diameter, "youngs_modulus": res["youngs_modulus"],
                "strength": res["strength"], "breaks": len(breaks), "breaks_at_peak": at_peak,
                "bonds_near_openings": near_all, "early_breaks_near_openings": near_early,
@@ -134,15 +176,42 @@ def main(argv):
                "substrate_breaks": int(np.sum(material[bond] == 2)) if len(bond) else 0}
         for k in table:
             table[k].append(row[k])
-        print(f"{sides}: {len(breaks)} breaks ({at_peak} up to the peak): {near_early:.2f} of the early ones near an "
-              f"opening against {near_all:.2f} of all bonds (x{near_early / near_all:.2f}); "
+        if layer_z is None:  # the layers of pores whose centres lie inside the sample
+            layer_z = pore_layers(centres, pore_radius)
+            layer_z = layer_z[(layer_z > z_all.min()) & (layer_z < z_all.max())]
+        bond_layer = np.bincount(layer_of(mid[:, 2], layer_z), minlength=len(layer_z))
+        early_layer = np.bincount(layer_of(early[:, 2], layer_z), minlength=len(layer_z)) if at_peak else \
+            np.zeros(len(layer_z), dtype=int)
+        all_layer = np.bincount(layer_of(where[:, 2], layer_z), minlength=len(layer_z))
+        for k in range(len(layer_z)):
+            for key, value in (("pore_layers", pore_layer_count), ("sides", sides), ("layer", k + 1), ("layer_z", layer_z[k]),
+                               ("bonds_share", bond_layer[k] / max(len(mid), 1)),
+                               ("breaks_at_peak", int(early_layer[k])),
+                               ("breaks_at_peak_share", early_layer[k] / max(at_peak, 1)),
+                               ("breaks", int(all_layer[k])), ("breaks_share", all_layer[k] / max(len(where), 1))):
+                layers[key].append(value)
+        print(f"{pore_layer_count} pore layers, {sides}: breaks up to the peak per pore layer (bottom first) "
+              f"{[int(v) for v in early_layer]}, bonds per layer {[int(v) for v in bond_layer]}")
+        print(f"{pore_layer_count} pore layers, {sides}: {len(breaks)} breaks ({at_peak} up to the peak): "
+              f"{near_early:.2f} of the early ones near an opening against {near_all:.2f} of all bonds (x{near_early / near_all:.2f}); "
               f"{row['late_in_densest_band']:.2f} of the later ones in one band of {BAND:g} H")
         panels.append((sides, where, at_peak, box, height, z_all.min()))
+    return panels
+
+
+def write_tables(data, table, layers):
     path = os.path.join(data, "opal_fracture_pattern.csv")
     write_table(path, table, "examples/opal/fracture_pattern.sh + fracture_pattern.py: the FCC opal compressed "
                              "by the quasi-static solver, paper's bonds; near = within 0.5 R of an interpore opening")
     print(f"wrote {path}")
+    path = os.path.join(data, "opal_fracture_layers.csv")
+    write_table(path, layers, "examples/opal/fracture_pattern.py: breaks per pore layer (1 = next to the substrate; "
+                              "a bond in the layer whose centre plane is nearest its midpoint), up to the peak and "
+                              "in all, against the layer's share of the bonds")
+    print(f"wrote {path}")
 
+
+def draw(figure, panels, centres, pore_radius):
     import matplotlib
 
     matplotlib.use("Agg")
@@ -167,7 +236,6 @@ def main(argv):
     os.makedirs(os.path.dirname(figure), exist_ok=True)
     fig.savefig(figure, dpi=130)
     print(f"wrote {figure}")
-    return 0
 
 
 if __name__ == "__main__":
