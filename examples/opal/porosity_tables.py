@@ -23,7 +23,7 @@ import sys
 
 import packlab
 from packlab.reproduction import mean_sd
-from packlab.studies import finished_tasks
+from packlab.studies import study_table_arguments
 from packlab.tables import write_table
 
 HERE = os.path.dirname(os.path.abspath(__file__))
@@ -58,13 +58,7 @@ def bulk_study_modulus(data):
 
 
 def main(argv):
-    if len(argv) < 2:
-        sys.exit(__doc__)
-    out = argv[1]
-    data = argv[2] if len(argv) > 2 else os.path.join(HERE, "..", "..", "docs", "data")
-    tasks = finished_tasks(out)
-    if not tasks:
-        sys.exit(f"porosity_tables: no finished task in {out}/tasks.csv")
+    _, data, tasks = study_table_arguments(argv, __doc__, os.path.join(HERE, "..", "..", "docs", "data"))
     samples = []
     for t in tasks:
         row = {"pore_fraction": float(t["opal.pore-fraction"]), "seed": int(t["seed"])}

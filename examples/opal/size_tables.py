@@ -18,7 +18,7 @@ import os
 import sys
 
 from packlab.reproduction import mean_sd
-from packlab.studies import finished_tasks
+from packlab.studies import study_table_arguments
 from packlab.tables import write_table
 
 HERE = os.path.dirname(os.path.abspath(__file__))
@@ -28,13 +28,7 @@ REFERENCE = ("4x2", 3)  # the paper's sample: 8.05 um^2, 3 pore layers (2.01 um)
 
 
 def main(argv):
-    if len(argv) < 2:
-        sys.exit(__doc__)
-    out = argv[1]
-    data = argv[2] if len(argv) > 2 else os.path.join(HERE, "..", "..", "docs", "data")
-    tasks = finished_tasks(out)
-    if not tasks:
-        sys.exit(f"size_tables: no finished task in {out}/tasks.csv")
+    _, data, tasks = study_table_arguments(argv, __doc__, os.path.join(HERE, "..", "..", "docs", "data"))
     samples = []
     for t in tasks:
         samples.append({

@@ -22,7 +22,7 @@ import os
 import statistics
 import sys
 
-from packlab.studies import finished_tasks
+from packlab.studies import study_table_arguments
 from packlab.tables import write_table
 
 HERE = os.path.dirname(os.path.abspath(__file__))
@@ -50,13 +50,7 @@ def read_snapshot(run_dir, requested):
 
 
 def main(argv):
-    if len(argv) < 2:
-        sys.exit(__doc__)
-    out = argv[1]
-    data = argv[2] if len(argv) > 2 else os.path.join(HERE, "..", "..", "docs", "data")
-    tasks = finished_tasks(out)
-    if not tasks:
-        sys.exit(f"stress_table: no finished task in {out}/tasks.csv")
+    out, data, tasks = study_table_arguments(argv, __doc__, os.path.join(HERE, "..", "..", "docs", "data"))
     samples = []
     for t in tasks:
         coating = int(float(t["coating_nm"]))

@@ -649,6 +649,20 @@ def finished_tasks(out):
         return [row for row in csv.DictReader(f) if row["status"] == "done"]
 
 
+def study_table_arguments(argv, usage, default_data):
+    """The arguments of a script that tabulates a study, ``SCRIPT STUDY_OUT [DATA]``: returns
+    (STUDY_OUT, DATA or ``default_data``, its finished tasks); exits with ``usage`` when
+    STUDY_OUT is missing and with a message when no task has finished."""
+    if len(argv) < 2:
+        sys.exit(usage)
+    out = argv[1]
+    data = argv[2] if len(argv) > 2 else default_data
+    tasks = finished_tasks(out)
+    if not tasks:
+        sys.exit(f"{os.path.basename(argv[0])}: no finished task in {out}/tasks.csv")
+    return out, data, tasks
+
+
 def _find_packlab(packlab):
     packlab = packlab or os.environ.get("PACKLAB_BINARY") or shutil.which("packlab")
     _require(packlab and os.path.exists(packlab),

@@ -595,3 +595,17 @@ def test_example_spec_expands(path, tmp_path):
             if word.startswith("--"):
                 assert f"{word} " in text or f"{word}," in text or f"{word}\n" in text or f"{word}=" in text, \
                     f"{path}: packlab {' '.join(command)} has no option {word}"
+
+
+def test_study_table_arguments_read_the_finished_tasks_or_exit(tmp_path):
+    from packlab.studies import study_table_arguments
+
+    (tmp_path / "tasks.csv").write_text("seed,status\n1,done\n2,failed\n")
+    out, data, tasks = study_table_arguments(["tables.py", str(tmp_path)], "usage", "docs/data")
+    assert (out, data, [t["seed"] for t in tasks]) == (str(tmp_path), "docs/data", ["1"])
+    assert study_table_arguments(["tables.py", str(tmp_path), "elsewhere"], "usage", "docs/data")[1] == "elsewhere"
+    with pytest.raises(SystemExit, match="usage"):
+        study_table_arguments(["tables.py"], "usage", "docs/data")
+    (tmp_path / "tasks.csv").write_text("seed,status\n1,failed\n")
+    with pytest.raises(SystemExit, match="no finished task"):
+        study_table_arguments(["tables.py", str(tmp_path)], "usage", "docs/data")
