@@ -40,10 +40,13 @@ TABLE_COLUMNS = ["coating_nm", "material", "samples", "paper_mean_xx", "paper_sd
 
 
 def read_snapshot(run_dir, requested):
-    """Rows of particle_stress.csv at the snapshot whose stress is the requested one."""
+    """Rows of particle_stress.csv of the snapshot requested at this applied stress [Pa]."""
     with open(os.path.join(run_dir, "particle_stress.csv"), newline="") as f:
-        rows = [r for r in csv.DictReader(f)]
-    rows = [r for r in rows if abs(float(r["stress"]) - requested) <= 1e-9 * requested]
+        rows = list(csv.DictReader(f))
+    if rows and "requested_stress" in rows[0]:
+        rows = [r for r in rows if r["requested_stress"] and float(r["requested_stress"]) == requested]
+    else:  # written before the column: the static solver's snapshot carries the requested stress
+        rows = [r for r in rows if abs(float(r["stress"]) - requested) <= 1e-9 * requested]
     if not rows:
         sys.exit(f"stress_table: no snapshot at {requested:g} Pa in {run_dir}/particle_stress.csv")
     return rows

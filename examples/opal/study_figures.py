@@ -142,7 +142,8 @@ def tables(study, data):
     stress = []
     for name, folder in (("paper", "fcc-paper"), ("coated", "fcc-coated-paper")):
         for r in read_rows(os.path.join(study, folder, "particle_stress.csv")):
-            values = {k: (int(v) if k in ("type", "particles") else float(v)) for k, v in r.items()}
+            values = {k: (int(v) if k in ("type", "particles") else float(v)) for k, v in r.items()
+                      if not k.startswith("requested_")}
             stress.append({"run": name, **values})
     write_rows(os.path.join(data, "opal_particle_stress.csv"), list(stress[0].keys()), stress, 6)
 

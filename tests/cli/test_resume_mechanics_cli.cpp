@@ -120,14 +120,19 @@ TEST(ResumeMechanicsCli, TestCompressKilledTwiceAndResumedEqualsUninterruptedRun
                                      " --snapshot-strains 0.005,0.02 --snapshot-stresses 100e6,400e6,300e6,1e9"
                                      " --samples 200 --threads 1",
                                  60, 70);
-  // The stresses are reached before the first kill (100 MPa), between the kills (300) and after
-  // them (400); 1 GPa never: four strain and stress snapshots in the order of the loading.
+  // 200 curve points, one checkpoint each, kills after the 60th and 70 more: 100 MPa is reached
+  // near point 29, 300 near 88 and 400 near 150 (strains 0.0044, 0.0132, 0.0224 of 0.03), so
+  // before, between and after the kills; 1 GPa never: five strain and stress snapshots in the
+  // order of the loading.
   const auto report = nlohmann::json::parse(read_bytes(dir.path() / "straight" / "report.json"));
   ASSERT_EQ(report["snapshots"].size(), 5u) << report["snapshots"].dump();
   EXPECT_EQ(report["snapshots"][0].value("requested_stress", 0.0), 100e6);
   EXPECT_EQ(report["snapshots"][1].value("requested_strain", 0.0), 0.005);
   EXPECT_EQ(report["snapshots"][2].value("requested_stress", 0.0), 300e6);
+  EXPECT_EQ(report["snapshots"][3].value("requested_strain", 0.0), 0.02);
   EXPECT_EQ(report["snapshots"][4].value("requested_stress", 0.0), 400e6);
+  EXPECT_GT(report["snapshots"][2]["strain"].get<double>(), 60.0 / 200 * 0.03);   // after the first kill
+  EXPECT_GT(report["snapshots"][4]["strain"].get<double>(), 130.0 / 200 * 0.03);  // after the second
 }
 
 TEST(ResumeMechanicsCli, TestShearKilledTwiceAndResumedEqualsUninterruptedRun) {
@@ -257,9 +262,14 @@ TEST(ResumeMechanicsCli, StaticCompressionKilledTwiceAndResumedEqualsUninterrupt
   const auto straight = nlohmann::json::parse(read_bytes(dir.path() / "straight" / "report.json"));
   // Enough breaks for five checkpoints, and the factorizations they make.
   EXPECT_GE(straight["broken_bonds"].get<long>(), 20) << straight.dump();
-  // 100 and 160 MPa on the first branches (the envelope peaks near 163 MPa at the second break),
-  // 170 MPa never: two stress snapshots beside the two strain snapshots, restored on resume.
-  EXPECT_EQ(straight["snapshots"].size(), 4u) << straight["snapshots"].dump();
+  // 100 and 160 MPa on the first two branches (the envelope peaks near 163 MPa at the second
+  // break, strain 0.047), 170 MPa never: in the order of the strains 0.005, 100 MPa (0.028 on
+  // the first branch), 0.04, 160 MPa (0.046 on the second); restored on resume.
+  ASSERT_EQ(straight["snapshots"].size(), 4u) << straight["snapshots"].dump();
+  EXPECT_EQ(straight["snapshots"][0].value("requested_strain", 0.0), 0.005);
+  EXPECT_EQ(straight["snapshots"][1].value("requested_stress", 0.0), 100e6);
+  EXPECT_EQ(straight["snapshots"][2].value("requested_strain", 0.0), 0.04);
+  EXPECT_EQ(straight["snapshots"][3].value("requested_stress", 0.0), 160e6);
   const auto help = run_packlab("test compress --help");
   EXPECT_NE(help.output.find("--solver static at the first of its fresh factorizations"), std::string::npos)
       << help.output;

@@ -261,3 +261,19 @@ TEST(ConfigSchema, AdaptThreadsReachesEveryEngineRun) {
   EXPECT_NE(error_of(io::relax_options(relax), write(dir, "adapt_threads = 2\n")).find("adapt_threads"),
             std::string::npos);
 }
+
+// A range on a list key holds for each of its numbers (validate names the key and the value).
+TEST(ConfigSchema, ARangeOnAListOfNumbersChecksEachNumber) {
+  std::vector<double> levels{1.0, 2.0};
+  io::ConfigSchema c("demo", "A schema for tests.");
+  c.numbers("levels", levels, "levels").unit("Pa").range(ranges::positive);
+  EXPECT_NO_THROW(c.validate());
+  levels = {1.0, -3.0};
+  try {
+    c.validate();
+    ADD_FAILURE() << "a negative level passed";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("levels"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("-3"), std::string::npos) << e.what();
+  }
+}

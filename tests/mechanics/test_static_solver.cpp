@@ -354,6 +354,13 @@ TEST(StaticSolver, StressSnapshotsLieOnTheFirstBranchThatCarriesTheirStress) {
   EXPECT_NEAR(by_stress.stress, stress, 1e-12 * stress);
   EXPECT_NEAR(by_stress.strain, stress / elastic.youngs_modulus, 1e-12 * strain);
   EXPECT_NEAR(elastic.youngs_modulus, sc_modulus(), 1e-6 * sc_modulus());
+  // Unsorted requests merge in the order of their strains: 0.5 and 2 x that strain around the stress.
+  o.snapshot_strains = {2.0 * strain, 0.5 * strain};
+  const UniaxialCompressionResult merged = run_uniaxial_compression(column, o);
+  ASSERT_EQ(merged.snapshots.size(), 3u);
+  EXPECT_EQ(merged.snapshots[0].requested_strain, 0.5 * strain);
+  EXPECT_EQ(merged.snapshots[1].requested_stress, stress);
+  EXPECT_EQ(merged.snapshots[2].requested_strain, 2.0 * strain);
   ASSERT_EQ(by_stress.particle_stress.size(), by_strain.particle_stress.size());
   for (std::size_t k = 0; k < by_stress.particle_stress.size(); ++k)
     EXPECT_NEAR(by_stress.particle_stress[k][8], by_strain.particle_stress[k][8],
@@ -388,6 +395,19 @@ TEST(StaticSolver, StressSnapshotsLieOnTheFirstBranchThatCarriesTheirStress) {
       std::count_if(s.bond_strain.begin(), s.bond_strain.end(), [](double e) { return std::isnan(e); }));
   EXPECT_EQ(broken, res.curve[j - 1].broken_bonds);
   EXPECT_GT(res.curve[j - 1].broken_bonds, 0u);
+
+  // A run that stops at max_breaks takes a strain it never reached on the last network it
+  // solved: the breaks of its last point are not yet missing from it.
+  setup.options.snapshot_stresses = {};
+  setup.options.snapshot_strains = {0.04};
+  setup.options.max_breaks = static_cast<long>(res.curve[j - 1].broken_bonds) + 1;
+  const UniaxialCompressionResult stopped = run_uniaxial_compression(p, setup.options);
+  ASSERT_EQ(stopped.snapshots.size(), 1u);
+  ASSERT_GE(stopped.curve.size(), 2u);
+  const auto& last = stopped.snapshots[0].bond_strain;
+  EXPECT_EQ(static_cast<std::size_t>(std::count_if(last.begin(), last.end(), [](double e) { return std::isnan(e); })),
+            stopped.curve[stopped.curve.size() - 2].broken_bonds);
+  EXPECT_LT(stopped.curve[stopped.curve.size() - 2].broken_bonds, stopped.broken_bonds);
 }
 
 TEST(StaticSolver, BackendsAgree) {
@@ -557,9 +577,28 @@ TEST(StaticSolver, SequentialLinearAnalysisWithSparseChecksRollsBackWhenACheckFa
     EXPECT_NEAR(r.strength, each.strength, tolerance * each.strength);
     for (std::size_t b = 0; b < r.model.bonds.size(); ++b) EXPECT_EQ(r.model.bonds.state[b], each.model.bonds.state[b]);
   };
+  // Snapshots on the way (a rollback takes back the ones it undoes, and their counters): two
+  // stresses between the first break and the peak, a strain before the peak and one past the
+  // end, against those of the run that checks every re-solve.
+  setup.options.snapshot_stresses = {0.9 * each.strength, 0.5 * (each.curve[1].stress + each.strength)};
+  setup.options.snapshot_strains = {0.5 * each.strain_at_peak, setup.options.max_strain};
+  const UniaxialCompressionResult each_snapshots = run_uniaxial_compression(p, setup.options);
+  ASSERT_EQ(each_snapshots.snapshots.size(), 4u);
+  auto same_snapshots = [&](const UniaxialCompressionResult& r, double tolerance) {
+    ASSERT_EQ(r.snapshots.size(), each_snapshots.snapshots.size());
+    for (std::size_t k = 0; k < r.snapshots.size(); ++k) {
+      const UniaxialCompressionSnapshot &a = r.snapshots[k], &b = each_snapshots.snapshots[k];
+      EXPECT_EQ(std::isnan(a.requested_stress), std::isnan(b.requested_stress)) << "snapshot " << k;
+      EXPECT_NEAR(a.strain, b.strain, tolerance * b.strain) << "snapshot " << k;
+      ASSERT_EQ(a.bond_strain.size(), b.bond_strain.size());
+      for (std::size_t j = 0; j < a.bond_strain.size(); ++j)
+        EXPECT_EQ(std::isnan(a.bond_strain[j]), std::isnan(b.bond_strain[j])) << "snapshot " << k << " bond " << j;
+    }
+  };
   setup.options.check_interval = 16;
   const UniaxialCompressionResult sparse = run_uniaxial_compression(p, setup.options);
   same_analysis(sparse, 0.0);
+  same_snapshots(sparse, 0.0);
   EXPECT_EQ(sparse.rollbacks, 0);
   EXPECT_LT(sparse.checks, each.checks / 8);
   EXPECT_GT(sparse.checks, 0);
@@ -567,6 +606,7 @@ TEST(StaticSolver, SequentialLinearAnalysisWithSparseChecksRollsBackWhenACheckFa
   setup.options.check_tolerance = 1e-30;
   const UniaxialCompressionResult rolled_back = run_uniaxial_compression(p, setup.options);
   same_analysis(rolled_back, 1e-9);
+  same_snapshots(rolled_back, 1e-9);
   EXPECT_GT(rolled_back.rollbacks, 2);
   EXPECT_GT(rolled_back.factorizations, static_cast<std::size_t>(rolled_back.rollbacks));
 }

@@ -41,12 +41,18 @@ void write_uniaxial_compression_outputs(const mechanics::UniaxialCompressionResu
         }
     const int bins = 60;
     if (!(hi > lo)) hi = lo + 1e-6;
+    // One column per snapshot point: a strain and a stress request met at the same point of the
+    // run are the same state (one column, not two of the same name).
+    std::vector<const mechanics::UniaxialCompressionSnapshot*> points;
+    for (const auto& s : r.snapshots)
+      if (points.empty() || points.back()->strain != s.strain) points.push_back(&s);
     std::string csv = "strain_bin";
-    for (const auto& s : r.snapshots) csv += fmt::format(",fraction_at_{:.6g}", s.strain);
+    for (const auto* s : points) csv += fmt::format(",fraction_at_{:.6g}", s->strain);
     csv += "\n";
     std::vector<std::vector<std::size_t>> h;
     std::vector<double> totals;
-    for (const auto& s : r.snapshots) {
+    for (const auto* point : points) {
+      const auto& s = *point;
       h.push_back(analyze::histogram(s.bond_strain, lo, hi, bins));
       double t = 0;
       for (auto c : h.back()) t += static_cast<double>(c);
@@ -60,11 +66,18 @@ void write_uniaxial_compression_outputs(const mechanics::UniaxialCompressionResu
     }
     io::write_text_atomically(dir / "bond_strain.csv", csv);
     io::make_plot("bond_strain", {(dir / "bond_strain.csv").string()}, dir / "bond_strain.png", plot);
-    std::string ps = "strain,stress,type,particles,mean_xx,sd_xx,mean_yy,sd_yy,mean_zz,sd_zz\n";
-    for (const auto& s : r.snapshots)
+    // requested_strain or requested_stress: the request the snapshot answers (the other empty).
+    std::string ps =
+        "strain,stress,type,particles,mean_xx,sd_xx,mean_yy,sd_yy,mean_zz,sd_zz,requested_strain,requested_stress\n";
+    for (const auto& s : r.snapshots) {
+      const bool by_stress = !std::isnan(s.requested_stress);
+      const std::string request =
+          by_stress ? fmt::format(",{:.17g}", s.requested_stress) : fmt::format("{:.17g},", s.requested_strain);
       for (const auto& t : analyze::stress_by_type(r.model, s.particle_stress))
-        ps += fmt::format("{:.17g},{:.17g},{},{},{:.17g},{:.17g},{:.17g},{:.17g},{:.17g},{:.17g}\n", s.strain, s.stress,
-                          t.type, t.particles, t.mean[0], t.sd[0], t.mean[1], t.sd[1], t.mean[2], t.sd[2]);
+        ps += fmt::format("{:.17g},{:.17g},{},{},{:.17g},{:.17g},{:.17g},{:.17g},{:.17g},{:.17g},{}\n", s.strain,
+                          s.stress, t.type, t.particles, t.mean[0], t.sd[0], t.mean[1], t.sd[1], t.mean[2], t.sd[2],
+                          request);
+    }
     io::write_text_atomically(dir / "particle_stress.csv", ps);
   }
   {

@@ -166,6 +166,14 @@ UniaxialCompressionResult run_static_uniaxial_compression(const Packing& bonded_
     result.snapshots.push_back(std::move(s));
   };
 
+  // The strains not reached when the analysis ends, on the network last solved (unit_q).
+  auto remaining_strain_snapshots = [&](double stress_per_strain) {
+    while (pending.next_strain < pending.strains.size()) {
+      const double e = pending.strains[pending.next_strain];
+      snapshot(pending.take_strain(), e, e * stress_per_strain);
+    }
+  };
+
   auto add_point = [&](double strain, double stress_per_strain, double energy_per_strain2) {
     UniaxialCompressionPoint p;
     p.step = static_cast<long>(result.curve.size());
@@ -367,6 +375,9 @@ UniaxialCompressionResult run_static_uniaxial_compression(const Packing& bonded_
       peak = stress;
       result.strain_at_peak = break_strain;
     }
+    // A run that ends with these breaks takes its strains past the end on the last network it
+    // solved: its displacements belong to the links before the breaks.
+    if (reaches_max_breaks || breaks_every_bond) remaining_strain_snapshots(stress1);
     for (std::size_t k : critical) {
       take_out(k);
       result.break_strain.push_back(break_strain);
@@ -383,11 +394,8 @@ UniaxialCompressionResult run_static_uniaxial_compression(const Packing& bonded_
       break;
     }
   }
-  // Strains past the end: the network as it stands (a stress never reached gives no snapshot).
-  while (pending.next_strain < pending.strains.size()) {
-    const double e = pending.strains[pending.next_strain];
-    snapshot(pending.take_strain(), e, e * last_stress1);
-  }
+  // Strains past the end: the last network solved (a stress never reached gives no snapshot).
+  remaining_strain_snapshots(last_stress1);
   result.strength = peak;
   result.broken_bonds = result.breaks.size();
   result.modulus.youngs_modulus = result.youngs_modulus;
