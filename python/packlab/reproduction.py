@@ -353,38 +353,57 @@ def opal_values(data):
     samples = read_table(os.path.join(data, "opal_porosity_paper.csv"))
     if not levels or not samples:
         return out
-    n_particles = sorted(int(r["particles"]) for r in samples)
-    particles = f"{n_particles[0]}-{n_particles[-1]}"
+    moduli = read_table(os.path.join(data, "opal_porosity_paper_modulus.csv")) or samples  # E only
+
+    def span(rows):
+        counts = sorted(int(r["particles"]) for r in rows)
+        return f"{counts[0]}-{counts[-1]}"
+
+    particles = {"E": span(moduli), "strength": span(samples)}
     what = "the paper's sample scaled by 150/762 (pores 138 nm packed at 150 nm, D/d = 9.2), paper's bonds, static solver"
     for r in levels:
         f = float(r["pore_fraction"])
         for level in ("049", "063"):
             if abs(f - int(level) / 100) < 1e-9:
-                n = int(r["samples"])
-                note = f"{what}; pore fraction {float(r['pore_fraction_of_box']):.3f}, {n} seeds"
-                out[f"opal.porosity_E_{level}"] = _ours(float(r["youngs_modulus"]) * 1e-9,
-                                                       float(r["youngs_modulus_sd"]) * 1e-9, n, particles, note)
-                out[f"opal.porosity_strength_{level}"] = _ours(float(r["strength"]) * 1e-6, float(r["strength_sd"]) * 1e-6,
-                                                              n, particles, note)
+                # E over the E-only samples where the study has them (modulus_samples), the
+                # strength over the compressed ones (samples).
+                n_strength = int(r["samples"])
+                n_modulus = int(r.get("modulus_samples") or n_strength)
+                for key, column, scale, n in (("E", "youngs_modulus", 1e-9, n_modulus),
+                                              ("strength", "strength", 1e-6, n_strength)):
+                    if n and r[column]:
+                        note = f"{what}; pore fraction {float(r['pore_fraction_of_box']):.3f}, {n} seeds"
+                        out[f"opal.porosity_{key}_{level}"] = _ours(float(r[column]) * scale,
+                                                                   float(r[column + "_sd"]) * scale, n,
+                                                                   particles[key], note)
     fits = read_table(os.path.join(data, "opal_porosity_paper_fits.csv"))
 
     def per_seed(quantity, law, held, column, scale=1.0):
-        values = [float(r[column]) * scale for r in fits if r["eps"] == "pore_fraction_of_box" and
-                  r["quantity"] == quantity and r["law"] == law and r["e0_held"] == held and r["seed"] != "all"]
-        m, s = mean_sd(values)
-        return m, s, len(values)
+        rows = [r for r in fits if r["eps"] == "pore_fraction_of_box" and r["quantity"] == quantity and
+                r["law"] == law and r["e0_held"] == held and r["seed"] != "all"]
+        m, s = mean_sd([float(r[column]) * scale for r in rows])
+        # What each seed's fit is over ("0.39-0.63 (6)": the range and the number of pore fractions).
+        over = rows[0].get("pore_fractions", "") if rows else ""
+        return m, s, len(rows), over
 
-    fractions = sorted(float(r["pore_fraction"]) for r in levels)
-    note = (f"{what}; fitted per seed over its {len(fractions)} pore fractions {fractions[0]:g}-{fractions[-1]:g}"
-            f"{'' if len(fractions) == 6 else ' (the paper: six, 0.39-0.63)'}, mean and SD over the seeds")
     for key, args in (("opal.eq25_E0", ("youngs_modulus", "power", "0", "e0", 1e-9)),
                       ("opal.eq25_m", ("youngs_modulus", "power", "0", "exponent")),
                       ("opal.eq24_b", ("youngs_modulus", "exponential", "shared", "exponent")),
                       ("opal.eq26_a", ("strength", "exponential", "0", "e0", 1e-6)),
                       ("opal.eq26_b", ("strength", "exponential", "0", "exponent"))):
-        m, s, n = per_seed(*args)
-        if n:
-            out[key] = _ours(m, s, n, particles, note + ("; E0 held at eq. 25's" if key == "opal.eq24_b" else ""))
+        m, s, n, over = per_seed(*args)
+        if not n:
+            continue
+        if "(" in over:
+            count, span = int(over.split("(")[1].rstrip(")")), over.split(" ")[0]
+        else:  # a fits table without the column: over the levels
+            fractions = sorted(float(r["pore_fraction"]) for r in levels)
+            count, span = len(fractions), f"{fractions[0]:g}-{fractions[-1]:g}"
+        note = (f"{what}; fitted per seed over its {count} pore fractions {span}"
+                f"{'' if count == 6 else ' (the paper: six, 0.39-0.63)'}, mean and SD over the seeds"
+                f"{' (E only: the first linear solve)' if args[0] == 'youngs_modulus' else ''}")
+        out[key] = _ours(m, s, n, particles["E" if args[0] == "youngs_modulus" else "strength"],
+                         note + ("; E0 held at eq. 25's" if key == "opal.eq24_b" else ""))
     return out
 
 

@@ -88,10 +88,10 @@ void bind_uniaxial_compression(py::module_& m) {
             py::list out;
             for (const auto& s : r.snapshots) {
               py::dict d;
-              if (std::isnan(s.requested_stress))
-                d["requested_strain"] = s.requested_strain;
-              else
+              if (s.by_stress())
                 d["requested_stress"] = s.requested_stress;
+              else
+                d["requested_strain"] = s.requested_strain;
               d["strain"] = s.strain;
               d["stress"] = s.stress;
               d["bond_strain"] = to_numpy(std::vector<double>(s.bond_strain));

@@ -107,6 +107,87 @@ def test_collect_reads_the_opal_porosity_rows_per_seed(tmp_path):
     assert rows["opal.eq26_b"]["within"] == "no"  # 3.9 against 3.85 +- 0.005
 
 
+def _porosity_tables():
+    import importlib.util
+
+    spec = importlib.util.spec_from_file_location("porosity_tables",
+                                                  os.path.join(ROOT, "examples", "opal", "porosity_tables.py"))
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    return module
+
+
+def _write_porosity_samples(path, rows):
+    lines = ["# c", "pore_fraction,seed,pores,pore_fraction_of_box,porosity,particles,bonds,youngs_modulus,strength,"
+             "broken_bonds,seconds"]
+    for f, seed, e, strength in rows:
+        lines.append(f"{f},{seed},{round(70 * f)},{f},{f + 0.03},{round(40000 * (1 - f))},{round(400000 * (1 - f))},"
+                     f"{e!r},{strength!r},10,1")
+    path.write_text("\n".join(lines) + "\n")
+
+
+def test_porosity_tables_fit_the_moduli_over_the_e_only_samples_and_the_strengths_over_the_compressed(tmp_path):
+    # E = 20 GPa (1 - eps)^2 x a factor per seed, strength = 500 MPa exp(-4 eps): compressed
+    # samples at three pore fractions and two seeds, E-only samples at all six and three seeds
+    # (the same E where both ran). The E laws are fitted over the six pore fractions, per seed of
+    # the E-only samples (m = 2 exactly), eq. 26 over the compressed ones (b = 4 exactly).
+    (tmp_path / "opal_runs.csv").write_text("run,youngs_modulus\nbulk,2.3e10\n")
+    (tmp_path / "opal_bulk_study.csv").write_text("# c\nside_nm,seed,youngs_modulus_gpa\n300,mean,24.0\n")
+    factor = {1: 1.0, 2: 1.02, 3: 0.97}
+    modulus = lambda f, seed: 20e9 * factor[seed] * (1 - f) ** 2  # noqa: E731
+    fractions = (0.39, 0.44, 0.49, 0.54, 0.59, 0.63)
+    _write_porosity_samples(tmp_path / "opal_porosity_paper.csv",
+                            [(f, s, modulus(f, s), 500e6 * math.exp(-4 * f)) for f in (0.49, 0.54, 0.63) for s in (1, 2)])
+    _write_porosity_samples(tmp_path / "opal_porosity_paper_modulus.csv",
+                            [(f, s, modulus(f, s), 0.0) for f in fractions for s in (1, 2, 3)])
+    tables = _porosity_tables()
+    assert tables.main(["porosity_tables.py", str(tmp_path)]) == 0
+    levels = reproduction.read_table(str(tmp_path / "opal_porosity_paper_levels.csv"))
+    assert [float(r["pore_fraction"]) for r in levels] == list(fractions)
+    assert [int(r["modulus_samples"]) for r in levels] == [3] * 6
+    assert [int(r["samples"]) for r in levels] == [0, 0, 2, 2, 0, 2]
+    assert levels[0]["strength"] == "" and float(levels[2]["strength"]) == pytest.approx(500e6 * math.exp(-4 * 0.49))
+    assert float(levels[0]["youngs_modulus"]) == pytest.approx(20e9 * (1.0 + 1.02 + 0.97) / 3 * 0.61 ** 2)
+    fits = reproduction.read_table(str(tmp_path / "opal_porosity_paper_fits.csv"))
+    power = [r for r in fits if r["eps"] == "pore_fraction_of_box" and r["law"] == "power" and r["e0_held"] == "0"]
+    assert [r["seed"] for r in power] == ["all", "1", "2", "3"]
+    for r in power[1:]:
+        assert r["samples"] == "6" and r["pore_fractions"] == "0.39-0.63 (6)"
+        assert float(r["exponent"]) == pytest.approx(2.0, rel=1e-6)
+        assert float(r["e0"]) == pytest.approx(20e9 * factor[int(r["seed"])], rel=1e-6)
+    strength = [r for r in fits if r["eps"] == "pore_fraction_of_box" and r["quantity"] == "strength" and
+                r["e0_held"] == "0"]
+    assert [r["seed"] for r in strength] == ["all", "1", "2"]
+    assert all(r["pore_fractions"] == "0.49-0.63 (3)" and float(r["exponent"]) == pytest.approx(4.0, rel=1e-6)
+               for r in strength)
+    for fixture in ("opal_runs.csv", "opal_bulk_study.csv"):  # only what the porosity rows read
+        (tmp_path / fixture).unlink()
+    rows = {r["key"]: r for r in reproduction.collect(str(tmp_path))}
+    assert rows["opal.eq25_m"]["realizations"] == 3 and "its 6 pore fractions 0.39-0.63," in rows["opal.eq25_m"]["note"]
+    assert rows["opal.eq26_b"]["realizations"] == 2 and "(the paper: six, 0.39-0.63)" in rows["opal.eq26_b"]["note"]
+    assert rows["opal.porosity_E_049"]["realizations"] == 3 and rows["opal.porosity_strength_049"]["realizations"] == 2
+
+    # A sample both ran with another E (or other bonds) is not the same sample: the script stops.
+    _write_porosity_samples(tmp_path / "opal_porosity_paper_modulus.csv",
+                            [(f, s, modulus(f, s) * (1.001 if (f, s) == (0.54, 2) else 1.0), 0.0)
+                             for f in fractions for s in (1, 2, 3)])
+    with pytest.raises(SystemExit, match="pore fraction 0.54, seed 2: E"):
+        tables.main(["porosity_tables.py", str(tmp_path)])
+    _write_porosity_samples(tmp_path / "opal_porosity_paper_modulus.csv", [(0.49, 1, modulus(0.49, 1), 0.0)])
+    text = (tmp_path / "opal_porosity_paper_modulus.csv").read_text().replace(",1,34,0.49,", ",1,35,0.49,")
+    (tmp_path / "opal_porosity_paper_modulus.csv").write_text(text)
+    with pytest.raises(SystemExit, match="seed 1: pores 34 .compressed. against 35"):
+        tables.main(["porosity_tables.py", str(tmp_path)])
+
+
+def test_porosity_tables_add_a_study_run_in_parts_to_the_sample_table():
+    merged = _porosity_tables().merged
+    table = [{"pore_fraction": 0.49, "seed": 1, "strength": 1.0}, {"pore_fraction": 0.63, "seed": 1, "strength": 2.0}]
+    study = [{"pore_fraction": 0.63, "seed": 1, "strength": 3.0}, {"pore_fraction": 0.49, "seed": 4, "strength": 4.0}]
+    assert [(r["pore_fraction"], r["seed"], r["strength"]) for r in merged(table, study)] == [
+        (0.49, 1, 1.0), (0.49, 4, 4.0), (0.63, 1, 3.0)]
+
+
 def test_collect_reads_the_opal_structure_rows_and_the_resolution_extrapolation(tmp_path):
     # E = 2 - 5 d/D exactly (GPa), the strength 40 - 100 d/D (MPa), 8 + 0.1 x bonds per particle
     # ... at D/d = 10, 20, 40, two packings each: the 1/x law gives q at D/d = 51 exactly, its

@@ -70,9 +70,8 @@ void write_uniaxial_compression_outputs(const mechanics::UniaxialCompressionResu
     std::string ps =
         "strain,stress,type,particles,mean_xx,sd_xx,mean_yy,sd_yy,mean_zz,sd_zz,requested_strain,requested_stress\n";
     for (const auto& s : r.snapshots) {
-      const bool by_stress = !std::isnan(s.requested_stress);
       const std::string request =
-          by_stress ? fmt::format(",{:.17g}", s.requested_stress) : fmt::format("{:.17g},", s.requested_strain);
+          s.by_stress() ? fmt::format(",{:.17g}", s.requested_stress) : fmt::format("{:.17g},", s.requested_strain);
       for (const auto& t : analyze::stress_by_type(r.model, s.particle_stress))
         ps += fmt::format("{:.17g},{:.17g},{},{},{:.17g},{:.17g},{:.17g},{:.17g},{:.17g},{:.17g},{}\n", s.strain,
                           s.stress, t.type, t.particles, t.mean[0], t.sd[0], t.mean[1], t.sd[1], t.mean[2], t.sd[2],

@@ -138,10 +138,10 @@ nlohmann::json uniaxial_compression_summary(const mechanics::UniaxialCompression
   nlohmann::json snaps = nlohmann::json::array();
   for (const auto& s : r.snapshots) {
     nlohmann::json sj{{"strain", s.strain}, {"stress", s.stress}};
-    if (std::isnan(s.requested_stress))
-      sj["requested_strain"] = s.requested_strain;
-    else
+    if (s.by_stress())
       sj["requested_stress"] = s.requested_stress;
+    else
+      sj["requested_strain"] = s.requested_strain;
     nlohmann::json types = nlohmann::json::array();
     for (const auto& t : analyze::stress_by_type(r.model, s.particle_stress))
       types.push_back({{"type", t.type},

@@ -42,6 +42,7 @@
 
 #include <array>
 #include <cstddef>
+#include <cmath>
 #include <cstdint>
 #include <functional>
 #include <istream>
@@ -80,6 +81,7 @@ struct UniaxialCompressionSnapshot {
   double stress = 0.0;
   std::vector<double> bond_strain;
   std::vector<std::array<double, 9>> particle_stress;
+  bool by_stress() const { return !std::isnan(requested_stress); }
 };
 
 struct UniaxialCompressionOptions {
