@@ -2,7 +2,7 @@
 """Which bonds eq. 16 may break, tested on the porosity study's samples (docs/reproduction.md,
 `opal.porosity_strength_*` and `opal.eq26_*`): the same samples compressed with eq. 16 on
 stretched bonds only (MUSEN's reading, packlab's default: examples/study/opal_porosity_paper.toml)
-and on compressed bonds too (examples/study/opal_porosity_compressive.toml). Writes
+and on compressed bonds too (examples/study/opal_porosity_paper_compressive.toml). Writes
 
   DATA/opal_porosity_breakage_reading.csv   per reading and pore fraction: E and strength, mean
                                             and SD over the seeds; and per reading (pore_fraction

@@ -415,7 +415,7 @@ def opal_porosity_resolution_values(data):
     rows = read_table(os.path.join(data, "opal_porosity_resolution.csv"))
     measured = [r for r in rows if r["scale"] and not r["scale"].startswith("D/d") and r["pore_fraction"]]
     if not measured:
-        return out
+        return out | opal_porosity_resolution_modulus_values(data)
     ratios = sorted({float(r["d_over_d"]) for r in measured})
     counts = sorted(float(r["particles"]) for r in measured)
     span = f"{counts[0]:.0f}-{counts[-1]:.0f} (means per level)"
@@ -440,6 +440,43 @@ def opal_porosity_resolution_values(data):
         elif r["law"] in ("eq25_m", "eq24_b", "eq26_b"):
             at = [float(m["law_mean"]) for m in rows if m["law"] == r["law"] and m["fitted_over"] == r["fitted_over"]
                   and not m["scale"].startswith("D/d")]
+            out[f"opal.{r['law']}_dd51"] = _ours(
+                float(r["law_mean"]), float(r["law_sd"]), int(r["seeds"]), span,
+                f"{what}; fitted per seed over pore fractions {r['fitted_over']} at each D/d "
+                f"(values there: {', '.join(f'{v:.3g}' for v in at)})")
+    return out | opal_porosity_resolution_modulus_values(data)
+
+
+def opal_porosity_resolution_modulus_values(data):
+    """E over the paper's whole range at three resolutions, from the E-only samples
+    (opal_porosity_resolution_modulus.csv, examples/opal/porosity_resolution_modulus.py; five
+    seeds, six pore fractions) taken to D/d = 51: the `opal.porosity_E_*_dd51`, `opal.eq25_m_dd51`
+    and `opal.eq24_b_dd51` rows, in place of those of the compressed samples where it has them."""
+    out = {}
+    rows = read_table(os.path.join(data, "opal_porosity_resolution_modulus.csv"))
+    measured = [r for r in rows if not r["scale"].startswith("D/d") and r["pore_fraction"]]
+    if not measured:
+        return out
+    ratios = sorted({float(r["d_over_d"]) for r in measured})
+    counts = sorted(float(r["particles"]) for r in measured)
+    span = f"{counts[0]:.0f}-{counts[-1]:.0f} (means per level)"
+    seeds = max(int(r["seeds"]) for r in measured)
+    what = (f"E-only random-pore samples (the first linear solve) at D/d = {', '.join(f'{x:g}' for x in ratios)}, "
+            f"paper's bonds, static solver, {seeds} seeds per level; q = q_inf + c d/D taken at D/d = 51, SD: fit "
+            "error and the spread of the laws 1/x^2, 1/sqrt(x)")
+    for r in rows:
+        if not r["scale"].startswith("D/d"):
+            continue
+        if r["pore_fraction"]:
+            level = f"{round(float(r['pore_fraction']) * 100):03d}"
+            if level not in ("049", "063"):  # the paper's values (Fig. 14)
+                continue
+            at = [float(m["youngs_modulus_mean"]) * 1e-9 for m in measured if m["pore_fraction"] == r["pore_fraction"]]
+            out[f"opal.porosity_E_{level}_dd51"] = _ours(
+                float(r["youngs_modulus_mean"]) * 1e-9, float(r["youngs_modulus_sd"]) * 1e-9, int(r["seeds"]), span,
+                f"{what} (values there: {', '.join(f'{v:.3g}' for v in at)})")
+        elif r["law"] in ("eq25_m", "eq24_b"):
+            at = [float(m["law_mean"]) for m in rows if m["law"] == r["law"] and not m["scale"].startswith("D/d")]
             out[f"opal.{r['law']}_dd51"] = _ours(
                 float(r["law_mean"]), float(r["law_sd"]), int(r["seeds"]), span,
                 f"{what}; fitted per seed over pore fractions {r['fitted_over']} at each D/d "

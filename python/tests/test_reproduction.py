@@ -257,6 +257,47 @@ def test_collect_extrapolates_the_porosity_samples_over_their_resolution(tmp_pat
     assert rows["opal.eq26_b_dd51"]["within"] == "no"  # 8 against 3.85
 
 
+def test_collect_takes_the_e_only_samples_over_the_whole_range_to_the_papers_resolution(tmp_path):
+    # E = (30 - 50 d/D) (1 - eps)^2 GPa exactly at D/d = 5, 7 and 9.2 over six pore fractions and
+    # three seeds (E only): m = 2 at every D/d; the E rows and eq. 25's m at D/d = 51 come from
+    # these (porosity_resolution_modulus.py) in place of the compressed samples' over 0.49-0.63.
+    def write(folder, scaled):
+        folder.mkdir()
+        lines = ["scale,opal.pore-fraction,seed,opal.parameters.pores.pore_fraction_of_region,"
+                 "opal.parameters.pores.ratio_to_mean_particle_diameter,opal.results.particles,"
+                 "compress.youngs_modulus,status"]
+        for scale, x in (((0.6, 5.0), (0.75, 7.0)) if scaled else ((1, 138 / 15),)):
+            for eps in (0.39, 0.44, 0.49, 0.54, 0.59, 0.63):
+                for seed in (1, 2, 3):
+                    lines.append(f"{scale},{eps},{seed},{eps},{x},{int(1000 * x)},{(30 - 50 / x) * (1 - eps) ** 2 * 1e9},"
+                                 "done")
+        (folder / "tasks.csv").write_text("\n".join(lines) + "\n")
+
+    write(tmp_path / "paper", False)
+    write(tmp_path / "resolution", True)
+    # The compressed samples' rows (another law) that these replace.
+    (tmp_path / "opal_porosity_resolution.csv").write_text(
+        "# c\nscale,d_over_d,pore_fraction,seeds,particles,youngs_modulus_mean,youngs_modulus_sd,strength_mean,"
+        "strength_sd,law,fitted_over,law_mean,law_sd\n1,9.2,0.49,3,20000,6e9,1e8,1.7e8,1e7,,,,\n"
+        "D/d=51,51,0.49,9,,7e9,4e8,1.8e8,1e7,,,,\nD/d=51,51,,9,,,,,,eq25_m,0.49-0.63,2.28,0.2\n"
+        "D/d=51,51,,9,,,,,,eq26_b,0.49-0.63,7.7,1.2\n")
+    subprocess.run([sys.executable, os.path.join(ROOT, "examples", "opal", "porosity_resolution_modulus.py"),
+                    str(tmp_path / "paper"), str(tmp_path / "resolution"), str(tmp_path)], check=True,
+                   capture_output=True, env={**os.environ, "PYTHONPATH": os.path.join(ROOT, "python") + os.pathsep +
+                                             os.environ.get("PYTHONPATH", "")})
+    table = reproduction.read_table(str(tmp_path / "opal_porosity_resolution_modulus.csv"))
+    laws = [r for r in table if r["law"] == "eq25_m"]
+    assert [r["scale"] for r in laws] == ["0.6", "0.75", "1", "D/d=51"]
+    assert all(r["fitted_over"] == "0.39-0.63" and float(r["law_mean"]) == pytest.approx(2.0, rel=1e-4) for r in laws)
+    rows = {r["key"]: r for r in reproduction.collect(str(tmp_path))}
+    assert float(rows["opal.porosity_E_049_dd51"]["packlab_value"]) == pytest.approx((30 - 50 / 51) * 0.51**2, rel=1e-3)
+    assert rows["opal.porosity_E_049_dd51"]["realizations"] == 9
+    assert float(rows["opal.eq25_m_dd51"]["packlab_value"]) == pytest.approx(2.0, rel=1e-3)
+    assert "0.39-0.63" in rows["opal.eq25_m_dd51"]["note"] and "E-only" in rows["opal.eq25_m_dd51"]["note"]
+    assert float(rows["opal.porosity_strength_049_dd51"]["packlab_value"]) == pytest.approx(180.0)  # kept
+    assert float(rows["opal.eq26_b_dd51"]["packlab_value"]) == pytest.approx(7.7)
+
+
 def test_collect_reads_the_coating_and_bulk_studies(tmp_path):
     # Coated opals with E = 6 - 20 d/D (GPa) exactly at D/d = 10, 15, 20, 25 and the strength
     # 250 - 500 d/D (MPa) where the run broke bonds (D/d <= 15); pore-free samples whose K_E is
