@@ -80,7 +80,8 @@ def _paper_rows():
     # The same rows from the porosity samples at D/d = 5.1, 6.7 and 9.2, extrapolated to the
     # paper's D/d = 51 (examples/opal/porosity_resolution.py).
     for key, base in (("porosity_E_049", "6.3"), ("porosity_E_063", "3.3"), ("porosity_strength_049", "92.9"),
-                      ("porosity_strength_063", "46.7"), ("eq25_m", "1.92"), ("eq24_b", "2.99"), ("eq26_b", "3.85")):
+                      ("porosity_strength_063", "46.7"), ("eq25_E0", "22.06"), ("eq25_m", "1.92"), ("eq24_b", "2.99"),
+                      ("eq26_b", "3.85")):
         paper, quantity, source, value, scatter, paper_particles = rows[f"opal.{key}"]
         rows[f"opal.{key}_dd51"] = (paper, quantity + ", extrapolated to D/d = 51", source, value, scatter,
                                     paper_particles)
@@ -475,10 +476,12 @@ def opal_porosity_resolution_modulus_values(data):
             out[f"opal.porosity_E_{level}_dd51"] = _ours(
                 float(r["youngs_modulus_mean"]) * 1e-9, float(r["youngs_modulus_sd"]) * 1e-9, int(r["seeds"]), span,
                 f"{what} (values there: {', '.join(f'{v:.3g}' for v in at)})")
-        elif r["law"] in ("eq25_m", "eq24_b"):
-            at = [float(m["law_mean"]) for m in rows if m["law"] == r["law"] and not m["scale"].startswith("D/d")]
+        elif r["law"] in ("eq25_E0", "eq25_m", "eq24_b"):
+            scale = 1e-9 if r["law"] == "eq25_E0" else 1.0  # [GPa]
+            at = [float(m["law_mean"]) * scale for m in rows
+                  if m["law"] == r["law"] and not m["scale"].startswith("D/d")]
             out[f"opal.{r['law']}_dd51"] = _ours(
-                float(r["law_mean"]), float(r["law_sd"]), int(r["seeds"]), span,
+                float(r["law_mean"]) * scale, float(r["law_sd"]) * scale, int(r["seeds"]), span,
                 f"{what}; fitted per seed over pore fractions {r['fitted_over']} at each D/d "
                 f"(values there: {', '.join(f'{v:.3g}' for v in at)})")
     return out
