@@ -192,8 +192,14 @@ def main(argv):
     # Over all samples, and per seed (each seed is one realization of the porosities, so the SD
     # of a law's parameters over the seeds is the SD over realizations). E over the E-only
     # samples (six porosities, five seeds: the paper's), the strength over the compressed ones.
+    # Each seed's fit spans the pore fractions every seed holds, so that the seeds are
+    # realizations of the same estimator (a study run in parts may hold a pore fraction for some
+    # seeds only: its samples enter the levels, not the laws).
     def of_seed(rows, seed):
-        return rows if seed == "all" else [r for r in rows if r["seed"] == seed]
+        seeds = {r["seed"] for r in rows}
+        common = {f for f in {r["pore_fraction"] for r in rows}
+                  if {r["seed"] for r in rows if r["pore_fraction"] == f} == seeds}
+        return [r for r in rows if r["pore_fraction"] in common and (seed == "all" or r["seed"] == seed)]
 
     for measure in ("pore_fraction_of_box", "porosity"):
         for seed in ["all"] + sorted({r["seed"] for r in moduli}):
