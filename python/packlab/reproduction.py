@@ -408,6 +408,14 @@ def opal_values(data):
     return out
 
 
+def _resolution_levels(measured):
+    """Of the measured levels of a resolution table: the D/d values, the particle counts'
+    span (means per level) and the most seeds of a level."""
+    ratios = sorted({float(r["d_over_d"]) for r in measured})
+    counts = sorted(float(r["particles"]) for r in measured)
+    return ratios, f"{counts[0]:.0f}-{counts[-1]:.0f} (means per level)", max(int(r["seeds"]) for r in measured)
+
+
 def opal_porosity_resolution_values(data):
     """The `_dd51` rows: the porosity samples at three resolutions (opal_porosity_resolution.csv,
     examples/opal/porosity_resolution.py) extrapolated to the paper's D/d = 51 by q = q_inf +
@@ -417,11 +425,8 @@ def opal_porosity_resolution_values(data):
     measured = [r for r in rows if r["scale"] and not r["scale"].startswith("D/d") and r["pore_fraction"]]
     if not measured:
         return out | opal_porosity_resolution_modulus_values(data)
-    ratios = sorted({float(r["d_over_d"]) for r in measured})
-    counts = sorted(float(r["particles"]) for r in measured)
-    span = f"{counts[0]:.0f}-{counts[-1]:.0f} (means per level)"
+    ratios, span, seeds = _resolution_levels(measured)
     scales = sorted({float(r["scale"]) for r in measured})
-    seeds = max(int(r["seeds"]) for r in measured)
     what = (f"the random-pore samples at D/d = {', '.join(f'{x:g}' for x in ratios)} (the paper's sample scaled by "
             f"150 s/762, s = {', '.join(f'{x:g}' for x in scales)}: the same pore count and box in units of the pore "
             f"spacing), paper's bonds, static solver, up to {seeds} packings per level; q = q_inf + c d/D taken at "
@@ -458,10 +463,7 @@ def opal_porosity_resolution_modulus_values(data):
     measured = [r for r in rows if not r["scale"].startswith("D/d") and r["pore_fraction"]]
     if not measured:
         return out
-    ratios = sorted({float(r["d_over_d"]) for r in measured})
-    counts = sorted(float(r["particles"]) for r in measured)
-    span = f"{counts[0]:.0f}-{counts[-1]:.0f} (means per level)"
-    seeds = max(int(r["seeds"]) for r in measured)
+    ratios, span, seeds = _resolution_levels(measured)
     what = (f"E-only random-pore samples (the first linear solve) at D/d = {', '.join(f'{x:g}' for x in ratios)}, "
             f"paper's bonds, static solver, {seeds} seeds per level; q = q_inf + c d/D taken at D/d = 51, SD: fit "
             "error and the spread of the laws 1/x^2, 1/sqrt(x)")
