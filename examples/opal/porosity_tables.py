@@ -195,15 +195,19 @@ def main(argv):
     # Each seed's fit spans the pore fractions every seed holds, so that the seeds are
     # realizations of the same estimator (a study run in parts may hold a pore fraction for some
     # seeds only: its samples enter the levels, not the laws).
-    def of_seed(rows, seed):
+    def at_common_fractions(rows):
         seeds = {r["seed"] for r in rows}
         common = {f for f in {r["pore_fraction"] for r in rows}
                   if {r["seed"] for r in rows if r["pore_fraction"] == f} == seeds}
-        return [r for r in rows if r["pore_fraction"] in common and (seed == "all" or r["seed"] == seed)]
+        return [r for r in rows if r["pore_fraction"] in common]
 
+    def of_seed(rows, seed):
+        return rows if seed == "all" else [r for r in rows if r["seed"] == seed]
+
+    law_moduli, law_samples = at_common_fractions(moduli), at_common_fractions(samples)
     for measure in ("pore_fraction_of_box", "porosity"):
-        for seed in ["all"] + sorted({r["seed"] for r in moduli}):
-            rows = of_seed(moduli, seed)
+        for seed in ["all"] + sorted({r["seed"] for r in law_moduli}):
+            rows = of_seed(law_moduli, seed)
             if len(rows) < 3:
                 continue
             fit(measure, "youngs_modulus", "exponential", "1", seed, rows, e0_bulk)
@@ -216,8 +220,8 @@ def main(argv):
             power = fit(measure, "youngs_modulus", "power", "0", seed, rows, 0.0)
             # The paper's eq. 24 and 25 share E0 = 22.06 GPa: eq. 24 with eq. 25's E0.
             fit(measure, "youngs_modulus", "exponential", "shared", seed, rows, power.e0)
-        for seed in ["all"] + sorted({r["seed"] for r in samples}):
-            rows = of_seed(samples, seed)
+        for seed in ["all"] + sorted({r["seed"] for r in law_samples}):
+            rows = of_seed(law_samples, seed)
             if len(rows) < 3:
                 continue
             fit(measure, "strength", "exponential", "0", seed, rows, 0.0)
