@@ -54,6 +54,20 @@ def samples(out, scaled):
     return found
 
 
+def shared_levels(found, script):
+    """The scales of `found` (samples()), and the pore fractions and seeds every scale holds: the
+    laws are fitted over the same levels at each. Exits (naming `script`) unless two scales share
+    three pore fractions."""
+    scales = sorted({k[0] for k in found})
+    if len(scales) < 2:
+        sys.exit(f"{script}: need finished samples at two scales")
+    fractions = sorted(set.intersection(*({k[1] for k in found if k[0] == s} for s in scales)))
+    seeds = sorted(set.intersection(*({k[2] for k in found if k[0] == s} for s in scales)))
+    if len(fractions) < 3:
+        sys.exit(f"{script}: need two scales sharing three pore fractions")
+    return scales, fractions, seeds
+
+
 def seed_laws(level):
     """Eq. 25, 24 and 26 fitted to one seed's samples (a list of tasks over the pore fractions)."""
     eps = [float(t["opal.parameters.pores.pore_fraction_of_region"]) for t in level]
@@ -83,14 +97,7 @@ def main(argv):
         sys.exit(__doc__)
     data = argv[3] if len(argv) > 3 else os.path.join(HERE, "..", "..", "docs", "data")
     found = samples(argv[1], False) | samples(argv[2], True)
-    scales = sorted({k[0] for k in found})
-    if len(scales) < 2:
-        sys.exit("porosity_resolution: need finished samples at two scales")
-    # The pore fractions and seeds every scale holds: the laws are fitted over the same levels.
-    fractions = sorted(set.intersection(*({k[1] for k in found if k[0] == s} for s in scales)))
-    seeds = sorted(set.intersection(*({k[2] for k in found if k[0] == s} for s in scales)))
-    if len(scales) < 2 or len(fractions) < 3:
-        sys.exit("porosity_resolution: need two scales sharing three pore fractions")
+    scales, fractions, seeds = shared_levels(found, "porosity_resolution")
     columns = ["scale", "d_over_d", "pore_fraction", "seeds", "particles", "youngs_modulus_mean", "youngs_modulus_sd",
                "strength_mean", "strength_sd", "law", "fitted_over", "law_mean", "law_sd"]
     rows = []

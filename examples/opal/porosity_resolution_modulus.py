@@ -32,7 +32,7 @@ from packlab.tables import write_table
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, HERE)
-from porosity_resolution import extrapolate, samples  # noqa: E402
+from porosity_resolution import extrapolate, samples, shared_levels  # noqa: E402
 from resolution_extrapolation import TARGET  # noqa: E402
 
 
@@ -51,11 +51,7 @@ def main(argv):
         sys.exit(__doc__)
     data = argv[3] if len(argv) > 3 else os.path.join(HERE, "..", "..", "docs", "data")
     found = samples(argv[1], False) | samples(argv[2], True)
-    scales = sorted({k[0] for k in found})
-    fractions = sorted(set.intersection(*({k[1] for k in found if k[0] == s} for s in scales)))
-    seeds = sorted(set.intersection(*({k[2] for k in found if k[0] == s} for s in scales)))
-    if len(scales) < 2 or len(fractions) < 3:
-        sys.exit("porosity_resolution_modulus: need two scales sharing three pore fractions")
+    scales, fractions, seeds = shared_levels(found, "porosity_resolution_modulus")
     columns = ["scale", "d_over_d", "pore_fraction", "seeds", "particles", "youngs_modulus_mean", "youngs_modulus_sd",
                "law", "fitted_over", "law_mean", "law_sd"]
     rows = []
