@@ -21,7 +21,8 @@ from packlab.tables import write_table
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, HERE)
-from porosity_resolution import samples, seed_laws  # noqa: E402
+from porosity_resolution import SCALED_COLUMNS, seed_laws  # noqa: E402
+from porosity_tables import study_samples  # noqa: E402
 
 SCALE = 0.6  # D/d = 5.12
 COLUMNS = ["eq16_applies_to", "pore_fraction", "seeds", "youngs_modulus_mean", "youngs_modulus_sd", "strength_mean",
@@ -29,11 +30,11 @@ COLUMNS = ["eq16_applies_to", "pore_fraction", "seeds", "youngs_modulus_mean", "
 
 
 def by_level(out):
-    """{pore fraction: {seed: task}} of the scale-0.6 samples of a study."""
+    """{pore fraction: {seed: sample}} of the scale-0.6 samples of a study."""
     found = {}
-    for (scale, fraction, seed), (_, t) in samples(out, True).items():
-        if scale == SCALE:
-            found.setdefault(fraction, {})[seed] = t
+    for r in study_samples(out, "porosity_compressive", SCALED_COLUMNS):
+        if r["scale"] == SCALE:
+            found.setdefault(r["pore_fraction"], {})[r["seed"]] = r
     return found
 
 
@@ -47,11 +48,11 @@ def main(argv):
         if not levels:
             sys.exit(f"porosity_compressive: no finished scale-{SCALE} task in {out}/tasks.csv")
         for fraction in sorted(levels):
-            tasks = list(levels[fraction].values())
-            e = mean_sd([float(t["compress.youngs_modulus"]) for t in tasks])
-            s = mean_sd([float(t["compress.strength"]) for t in tasks])
-            b = mean_sd([float(t["compress.broken_bonds"]) for t in tasks])
-            rows.append({"eq16_applies_to": reading, "pore_fraction": fraction, "seeds": len(tasks),
+            level = list(levels[fraction].values())
+            e = mean_sd([r["youngs_modulus"] for r in level])
+            s = mean_sd([r["strength"] for r in level])
+            b = mean_sd([r["broken_bonds"] for r in level])
+            rows.append({"eq16_applies_to": reading, "pore_fraction": fraction, "seeds": len(level),
                          "youngs_modulus_mean": e[0], "youngs_modulus_sd": e[1], "strength_mean": s[0],
                          "strength_sd": s[1], "broken_bonds_mean": b[0]})
         # The laws per seed over the pore fractions that seed has at every level.

@@ -1,29 +1,43 @@
 #!/usr/bin/env python3
-"""The porosity study at three resolutions (docs/reproduction.md, `opal.porosity_*`,
-`opal.eq24_b`, `opal.eq25_*`, `opal.eq26_*`): the samples of examples/study/opal_porosity_paper.toml
-(scale 1, pores 9.2 particle diameters across) and of examples/study/opal_porosity_resolution.toml
-(the samples scaled by 0.6 and 0.75: D/d = 5.12 and 6.65, the same pore count and box in
-units of the pore spacing), with the paper's bonds and the static solver. Writes
+"""The porosity study at three resolutions (docs/reproduction.md, the `_dd51` rows of
+`opal.porosity_*`, `opal.eq24_b`, `opal.eq25_*`, `opal.eq26_*`): the samples of
+examples/study/opal_porosity_paper.toml (scale 1, pores 9.2 particle diameters across; its
+per-sample table DATA/opal_porosity_paper.csv, porosity_tables.py) and of
+examples/study/opal_porosity_resolution.toml (the samples scaled by 0.6 and 0.75: D/d = 5.12 and
+6.65, the same pore count and box in units of the pore spacing), with the paper's bonds and the
+static solver; with --modulus their E-only samples (opal_porosity_paper_modulus.toml,
+DATA/opal_porosity_paper_modulus.csv, and opal_porosity_resolution_modulus.toml: the compression
+stopped after its first linear solve). Writes
 
-  DATA/opal_porosity_resolution.csv   per scale and pore fraction: D/d, particles, E and strength
-                                      (mean and SD over the seeds); then per scale (pore_fraction
-                                      empty) the laws fitted per seed over the pore fractions all
-                                      scales hold and (where a scale has more) over all of its
-                                      pore fractions (column fitted_over), as porosity_tables.py
-                                      fits them
-                                      (packlab.fit_porosity_law; eps the box's pore fraction):
-                                      eq. 25 E0 and m (E0 free), eq. 24 b (E0 of eq. 25), eq. 26
-                                      sigma0 and b (sigma0 free); mean and SD over the seeds; then
-                                      rows scale = "D/d=51" (seeds: the samples behind it; _sd:
-                                      the extrapolation's uncertainty): each quantity's trend over the
-                                      resolution taken at the paper's D/d = 51 as
-                                      resolution_extrapolation.py does (q = q_inf + c d/D over every
-                                      sample or per-seed fit; uncertainty: the fit's standard error
-                                      and half the spread of the laws 1/x, 1/x^2, 1/sqrt(x))
+  DATA/opal_porosity_resolution_samples.csv   one row per sample of the scaled study (scale, D/d
+  (--modulus: _modulus_samples.csv)           and porosity_tables.py's columns); --study adds a
+                                              study folder's samples to it (a sample replaces the
+                                              table's of the same scale, pore fraction and seed),
+                                              so the tables below regenerate from DATA alone
+  DATA/opal_porosity_resolution.csv           per scale and pore fraction: D/d, particles, E and
+  (--modulus: _modulus.csv, E only)           strength (mean and SD over the seeds every scale
+                                              holds); then per scale (pore_fraction empty) the
+                                              laws fitted per seed over the pore fractions all
+                                              scales hold and (where a scale has more) over all of
+                                              its pore fractions (column fitted_over), as
+                                              porosity_tables.py fits them
+                                              (packlab.fit_porosity_law; eps the box's pore
+                                              fraction): eq. 25 E0 and m (E0 free), eq. 24 b (E0 of
+                                              eq. 25), eq. 26 sigma0 and b (sigma0 free; not with
+                                              --modulus); mean and SD over the seeds; then rows
+                                              scale = "D/d=51" (seeds: the samples behind it; _sd:
+                                              the extrapolation's uncertainty): each quantity's
+                                              trend over the resolution taken at the paper's
+                                              D/d = 51 as resolution_extrapolation.py does (q =
+                                              q_inf + c d/D over every sample or per-seed fit;
+                                              uncertainty: the fit's standard error and half the
+                                              spread of the laws 1/x, 1/x^2, 1/sqrt(x))
 
-usage: porosity_resolution.py SCALE1_OUT RESOLUTION_OUT [DATA]   (the two studies' --out folders;
-       needs the packlab Python module: PYTHONPATH=python:build/python)"""
+usage: porosity_resolution.py [--modulus] [--study RESOLUTION_OUT] [DATA]
+       (DATA defaults to docs/data of this checkout; needs the packlab Python module:
+       PYTHONPATH=python:build/python)"""
 
+import argparse
 import math
 import os
 import sys
@@ -32,25 +46,37 @@ import numpy as np
 
 import packlab
 from packlab.reproduction import mean_sd
-from packlab.studies import finished_tasks
-from packlab.tables import write_table
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, HERE)
+from porosity_tables import SAMPLE_COLUMNS, merged, study_samples, table_samples, write  # noqa: E402
 from resolution_extrapolation import LAWS, TARGET, fit as fit_law  # noqa: E402
 
 PARTICLE_DIAMETER = 15e-9
 SCALE1_PORE_DIAMETER = 138e-9  # opal_porosity_paper.toml
 
 
-def samples(out, scaled):
-    """{(scale, pore fraction, seed): (D/d, task)} of a study's finished tasks."""
-    found = {}
-    for t in finished_tasks(out):
-        scale = float(t["scale"]) if scaled else 1.0
-        ratio = (float(t["opal.parameters.pores.ratio_to_mean_particle_diameter"]) if scaled
-                 else SCALE1_PORE_DIAMETER / PARTICLE_DIAMETER)
-        found[(scale, float(t["opal.pore-fraction"]), int(t["seed"]))] = (ratio, t)
+SCALED_COLUMNS = ("scale", "d_over_d")
+TABLES = {False: ("opal_porosity_paper.csv", "opal_porosity_resolution_samples.csv", "opal_porosity_resolution.csv"),
+          True: ("opal_porosity_paper_modulus.csv", "opal_porosity_resolution_modulus_samples.csv",
+                 "opal_porosity_resolution_modulus.csv")}  # scale 1, the scaled samples, the output
+
+
+def samples(data, modulus, study=None):
+    """{(scale, pore fraction, seed): (D/d, sample)} of the scale-1 per-sample table and of the
+    scaled one, to which `study` (a --out folder), if given, is first added (and written)."""
+    scale1, scaled, _ = TABLES[modulus]
+    path = os.path.join(data, scaled)
+    table = table_samples(path, SCALED_COLUMNS)
+    if study:
+        table = merged(table, study_samples(study, "--study", SCALED_COLUMNS), SCALED_COLUMNS)
+        write(path, list(SCALED_COLUMNS) + SAMPLE_COLUMNS, table,
+              "examples/study/opal_porosity_resolution" + ("_modulus" if modulus else "") + ".toml: the samples of "
+              "opal_porosity_paper.toml scaled by 0.6 and 0.75; particles 15 nm; periodic random pores; static solver; "
+              "paper's bonds" + ("; E only (max-strain 1e-6: the first linear solve, no break)" if modulus else ""))
+    found = {(r["scale"], r["pore_fraction"], r["seed"]): (r["d_over_d"], r) for r in table}
+    found |= {(1.0, r["pore_fraction"], r["seed"]): (SCALE1_PORE_DIAMETER / PARTICLE_DIAMETER, r)
+              for r in table_samples(os.path.join(data, scale1))}
     return found
 
 
@@ -60,7 +86,7 @@ def shared_levels(found, script):
     three pore fractions."""
     scales = sorted({k[0] for k in found})
     if len(scales) < 2:
-        sys.exit(f"{script}: need finished samples at two scales")
+        sys.exit(f"{script}: need samples at two scales (the scaled ones: run with --study RESOLUTION_OUT)")
     fractions = sorted(set.intersection(*({k[1] for k in found if k[0] == s} for s in scales)))
     seeds = sorted(set.intersection(*({k[2] for k in found if k[0] == s} for s in scales)))
     if len(fractions) < 3:
@@ -68,16 +94,18 @@ def shared_levels(found, script):
     return scales, fractions, seeds
 
 
-def seed_laws(level):
-    """Eq. 25, 24 and 26 fitted to one seed's samples (a list of tasks over the pore fractions)."""
-    eps = [float(t["opal.parameters.pores.pore_fraction_of_region"]) for t in level]
-    modulus = [float(t["compress.youngs_modulus"]) for t in level]
-    strength = [float(t["compress.strength"]) for t in level]
-    power = packlab.fit_porosity_law("power", eps, modulus, 0.0)
-    shared = packlab.fit_porosity_law("exponential", eps, modulus, power.e0)
-    eq26 = packlab.fit_porosity_law("exponential", eps, strength, 0.0)
-    return {"eq25_E0": power.e0, "eq25_m": power.exponent, "eq24_b": shared.exponent, "eq26_sigma0": eq26.e0,
-            "eq26_b": eq26.exponent}
+def seed_laws(level, modulus=False):
+    """Eq. 25, 24 and (unless `modulus`: E only) 26 fitted to one seed's samples (a list of
+    samples over the pore fractions)."""
+    eps = [r["pore_fraction_of_box"] for r in level]
+    moduli = [r["youngs_modulus"] for r in level]
+    power = packlab.fit_porosity_law("power", eps, moduli, 0.0)
+    shared = packlab.fit_porosity_law("exponential", eps, moduli, power.e0)
+    laws = {"eq25_E0": power.e0, "eq25_m": power.exponent, "eq24_b": shared.exponent}
+    if not modulus:
+        eq26 = packlab.fit_porosity_law("exponential", eps, [r["strength"] for r in level], 0.0)
+        laws |= {"eq26_sigma0": eq26.e0, "eq26_b": eq26.exponent}
+    return laws
 
 
 def extrapolate(x, y):
@@ -93,13 +121,18 @@ def extrapolate(x, y):
 
 
 def main(argv):
-    if len(argv) < 3:
-        sys.exit(__doc__)
-    data = argv[3] if len(argv) > 3 else os.path.join(HERE, "..", "..", "docs", "data")
-    found = samples(argv[1], False) | samples(argv[2], True)
+    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0],
+                                     formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument("data", nargs="?", default=os.path.join(HERE, "..", "..", "docs", "data"))
+    parser.add_argument("--study", help="the --out folder of examples/study/opal_porosity_resolution.toml "
+                        "(--modulus: opal_porosity_resolution_modulus.toml)")
+    parser.add_argument("--modulus", action="store_true", help="the E-only samples: E and eq. 24-25 only")
+    args = parser.parse_args(argv[1:])
+    found = samples(args.data, args.modulus, args.study)
     scales, fractions, seeds = shared_levels(found, "porosity_resolution")
-    columns = ["scale", "d_over_d", "pore_fraction", "seeds", "particles", "youngs_modulus_mean", "youngs_modulus_sd",
-               "strength_mean", "strength_sd", "law", "fitted_over", "law_mean", "law_sd"]
+    quantities = ["youngs_modulus"] + ([] if args.modulus else ["strength"])
+    columns = (["scale", "d_over_d", "pore_fraction", "seeds", "particles"]
+               + [q + s for q in quantities for s in ("_mean", "_sd")] + ["law", "fitted_over", "law_mean", "law_sd"])
     rows = []
 
     def row(**kw):
@@ -112,20 +145,19 @@ def main(argv):
         own = sorted({k[1] for k in found if k[0] == s})
         for f in own:
             level = [found[(s, f, seed)][1] for seed in seeds if (s, f, seed) in found]
-            e = [float(t["compress.youngs_modulus"]) for t in level]
-            st = [float(t["compress.strength"]) for t in level]
-            n = [float(t["opal.results.particles"]) for t in level]
-            if f in fractions:
-                per_sample.setdefault((f, "youngs_modulus"), []).extend((ratio, v) for v in e)
-                per_sample.setdefault((f, "strength"), []).extend((ratio, v) for v in st)
+            values = {}
+            for q in quantities:
+                measured = [r[q] for r in level]
+                if f in fractions:
+                    per_sample.setdefault((f, q), []).extend((ratio, v) for v in measured)
+                m, sd = mean_sd(measured)
+                values |= {q + "_mean": f"{m:.6g}", q + "_sd": f"{sd:.3g}"}
             row(scale=f"{s:g}", d_over_d=f"{ratio:.4g}", pore_fraction=f"{f:g}", seeds=len(level),
-                particles=f"{mean_sd(n)[0]:.0f}", youngs_modulus_mean=f"{mean_sd(e)[0]:.6g}",
-                youngs_modulus_sd=f"{mean_sd(e)[1]:.3g}", strength_mean=f"{mean_sd(st)[0]:.6g}",
-                strength_sd=f"{mean_sd(st)[1]:.3g}")
+                particles=f"{mean_sd([r['particles'] for r in level])[0]:.0f}", **values)
         # The laws over the pore fractions every scale holds (the trend below), and over all of
         # this scale's where it holds more (the paper's six, 0.39-0.63).
         for over in ([fractions, own] if own != fractions else [fractions]):
-            laws = [seed_laws([found[(s, f, seed)][1] for f in over]) for seed in seeds
+            laws = [seed_laws([found[(s, f, seed)][1] for f in over], args.modulus) for seed in seeds
                     if all((s, f, seed) in found for f in over)]
             if not laws:  # no seed holds every pore fraction of the range yet
                 continue
@@ -153,12 +185,11 @@ def main(argv):
             fitted_over=f"{fractions[0]:g}-{fractions[-1]:g}", law_mean=f"{value:.5g}", law_sd=f"{err:.3g}")
         print(f"{name}: " + ", ".join(f"D/d {r['d_over_d']} over {r['fitted_over']}: {r['law_mean']} +- {r['law_sd']}"
                                       for r in rows if r["law"] == name))
-    path = os.path.join(data, "opal_porosity_resolution.csv")
-    write_table(path, {k: [r[k] for r in rows] for k in columns},
-                "examples/opal/porosity_resolution.py: the random-pore porosity samples at scales "
-                + ", ".join(f"{s:g}" for s in scales) + "; E [Pa], strength [Pa]; laws over pore fractions "
-                + ", ".join(f"{f:g}" for f in fractions) + f", seeds {', '.join(map(str, seeds))}")
-    print(f"wrote {path} ({len(rows)} rows)")
+    write(os.path.join(args.data, TABLES[args.modulus][2]), columns, rows,
+          "examples/opal/porosity_resolution.py" + (" --modulus: E-only" if args.modulus else ": the")
+          + " random-pore porosity samples at scales " + ", ".join(f"{s:g}" for s in scales)
+          + ("; E [Pa]" if args.modulus else "; E [Pa], strength [Pa]") + "; laws over pore fractions "
+          + ", ".join(f"{f:g}" for f in fractions) + f", seeds {', '.join(map(str, seeds))}")
     return 0
 
 

@@ -52,6 +52,7 @@ FIELDS = {"pores": "opal.parameters.pores.count", "pore_fraction_of_box": "opal.
           "porosity": "opal.results.porosity", "particles": "opal.results.particles", "bonds": "opal.results.bonds",
           "youngs_modulus": "compress.youngs_modulus", "strength": "compress.strength",
           "broken_bonds": "compress.broken_bonds", "seconds": "compress.seconds"}
+EXTRA_FIELDS = {"scale": "scale", "d_over_d": "opal.parameters.pores.ratio_to_mean_particle_diameter"}
 
 
 def write(path, header, rows, comment):
@@ -76,8 +77,9 @@ def bulk_study_modulus(data):
     return 1e9 * float(max(rows, key=lambda r: float(r["side_nm"]))["youngs_modulus_gpa"])
 
 
-def study_samples(out, name):
-    """One row per finished task of a study folder (SAMPLE_COLUMNS)."""
+def study_samples(out, name, extra=()):
+    """One row per finished task of a study folder (SAMPLE_COLUMNS, then the columns `extra` names
+    from EXTRA_FIELDS: the scale and D/d of a study over resolutions)."""
     tasks = finished_tasks(out)
     if not tasks:
         sys.exit(f"porosity_tables: no finished task in {out}/tasks.csv ({name})")
@@ -87,25 +89,30 @@ def study_samples(out, name):
         for column, field in FIELDS.items():
             v = float(t[field])
             row[column] = int(v) if column in INTEGER_COLUMNS else v
+        row |= {column: float(t[EXTRA_FIELDS[column]]) for column in extra}
         rows.append(row)
-    return sorted(rows, key=lambda r: (r["pore_fraction"], r["seed"]))
+    return sorted(rows, key=lambda r: tuple(r[c] for c in extra) + (r["pore_fraction"], r["seed"]))
 
 
-def table_samples(path):
+def table_samples(path, extra=()):
     """The per-sample table `path` under DATA as rows of numbers ([] if missing)."""
     rows = []
     for r in read_table(path):
-        row = {c: (int(float(r[c])) if c in INTEGER_COLUMNS or c == "seed" else float(r[c])) for c in SAMPLE_COLUMNS}
+        row = {c: (int(float(r[c])) if c in INTEGER_COLUMNS or c == "seed" else float(r[c]))
+               for c in list(extra) + SAMPLE_COLUMNS}
         rows.append(row)
     return rows
 
 
-def merged(table, study):
+def merged(table, study, extra=()):
     """The per-sample table with a study folder's samples added: a sample of the folder replaces
-    the table's of the same pore fraction and seed (a study run in parts, e.g. seeds 4-5 later,
-    adds to what the table holds)."""
-    rows = {(r["pore_fraction"], r["seed"]): r for r in table}
-    rows.update({(r["pore_fraction"], r["seed"]): r for r in study})
+    the table's of the same pore fraction and seed (and `extra` columns: the scale; a study run
+    in parts, e.g. seeds 4-5 later, adds to what the table holds)."""
+    def key(r):
+        return tuple(r[c] for c in extra) + (r["pore_fraction"], r["seed"])
+
+    rows = {key(r): r for r in table}
+    rows.update({key(r): r for r in study})
     return [rows[k] for k in sorted(rows)]
 
 

@@ -455,7 +455,7 @@ def opal_porosity_resolution_values(data):
 
 def opal_porosity_resolution_modulus_values(data):
     """E over the paper's whole range at three resolutions, from the E-only samples
-    (opal_porosity_resolution_modulus.csv, examples/opal/porosity_resolution_modulus.py; five
+    (opal_porosity_resolution_modulus.csv, examples/opal/porosity_resolution.py --modulus; five
     seeds, six pore fractions) taken to D/d = 51: the `opal.porosity_E_*_dd51`, `opal.eq25_m_dd51`
     and `opal.eq24_b_dd51` rows, in place of those of the compressed samples where it has them."""
     out = {}

@@ -226,29 +226,43 @@ def test_collect_reads_the_opal_structure_rows_and_the_resolution_extrapolation(
     assert rows["opal.coating20_E"]["within"] == "no"  # 5.9 against 5.96 +- 0.005
 
 
+def _write_resolution_study(folder, fractions, seeds, modulus, strength):
+    """A study folder of examples/study/opal_porosity_resolution.toml with the scales 0.6 (D/d 5)
+    and 0.75 (D/d 7): E and strength exactly the functions of (pore fraction, D/d) given."""
+    folder.mkdir()
+    lines = ["scale,opal.pore-fraction,seed,opal.parameters.pores.count,opal.parameters.pores.pore_fraction_of_region,"
+             "opal.results.porosity,opal.parameters.pores.ratio_to_mean_particle_diameter,opal.results.particles,"
+             "opal.results.bonds,compress.youngs_modulus,compress.strength,compress.broken_bonds,compress.seconds,status"]
+    for scale, x in ((0.6, 5.0), (0.75, 7.0)):
+        for eps in fractions:
+            for seed in seeds:
+                lines.append(f"{scale},{eps},{seed},{round(70 * eps)},{eps},{eps + 0.03},{x},{int(1000 * x)},"
+                             f"{int(10000 * x)},{modulus(eps, x)!r},{strength(eps, x)!r},10,1,done")
+    (folder / "tasks.csv").write_text("\n".join(lines) + "\n")
+
+
+def _porosity_resolution(*args):
+    subprocess.run([sys.executable, os.path.join(ROOT, "examples", "opal", "porosity_resolution.py"), *map(str, args)],
+                   check=True, capture_output=True, env={**os.environ, "PYTHONPATH": os.path.join(ROOT, "python") +
+                                                         os.pathsep + os.environ.get("PYTHONPATH", "")})
+
+
 def test_collect_extrapolates_the_porosity_samples_over_their_resolution(tmp_path):
     # E = (30 - 50 d/D) (1 - eps)^2.5 GPa and strength = 9 exp(-8 eps) (1 - d/D) GPa exactly, at
-    # D/d = 5, 7 (study with a scale label) and 9.2 (the scale-1 study), two seeds, four pore
+    # D/d = 5, 7 (the scaled study) and 9.2 (the scale-1 per-sample table), two seeds, four pore
     # fractions: the laws' exponents are the same at every D/d and the values at D/d = 51 follow.
-    def write(folder, scaled):
-        folder.mkdir()
-        lines = ["scale,opal.pore-fraction,seed,opal.parameters.pores.pore_fraction_of_region,"
-                 "opal.parameters.pores.ratio_to_mean_particle_diameter,opal.results.particles,"
-                 "compress.youngs_modulus,compress.strength,status"]
-        for scale, x in (((0.6, 5.0), (0.75, 7.0)) if scaled else ((1, 138 / 15),)):
-            for eps in (0.49, 0.54, 0.59, 0.63):
-                for seed in (1, 2):
-                    e = (30 - 50 / x) * (1 - eps) ** 2.5 * 1e9
-                    strength = 9e9 * math.exp(-8 * eps) * (1 - 1 / x)
-                    lines.append(f"{scale},{eps},{seed},{eps},{x},{int(1000 * x)},{e},{strength},done")
-        (folder / "tasks.csv").write_text("\n".join(lines) + "\n")
-
-    write(tmp_path / "paper", False)
-    write(tmp_path / "resolution", True)
-    subprocess.run([sys.executable, os.path.join(ROOT, "examples", "opal", "porosity_resolution.py"),
-                    str(tmp_path / "paper"), str(tmp_path / "resolution"), str(tmp_path)], check=True,
-                   capture_output=True, env={**os.environ, "PYTHONPATH": os.path.join(ROOT, "python") + os.pathsep +
-                                             os.environ.get("PYTHONPATH", "")})
+    fractions, seeds = (0.49, 0.54, 0.59, 0.63), (1, 2)
+    modulus = lambda eps, x: (30 - 50 / x) * (1 - eps) ** 2.5 * 1e9  # noqa: E731
+    strength = lambda eps, x: 9e9 * math.exp(-8 * eps) * (1 - 1 / x)  # noqa: E731
+    _write_porosity_samples(tmp_path / "opal_porosity_paper.csv",
+                            [(f, s, modulus(f, 138 / 15), strength(f, 138 / 15)) for f in fractions for s in seeds])
+    _write_resolution_study(tmp_path / "resolution", fractions, seeds, modulus, strength)
+    _porosity_resolution("--study", tmp_path / "resolution", tmp_path)
+    # The scaled samples are now a table beside the others: the same tables come from it alone.
+    first = (tmp_path / "opal_porosity_resolution.csv").read_text()
+    assert len(reproduction.read_table(str(tmp_path / "opal_porosity_resolution_samples.csv"))) == 16
+    _porosity_resolution(tmp_path)
+    assert (tmp_path / "opal_porosity_resolution.csv").read_text() == first
     rows = {r["key"]: r for r in reproduction.collect(str(tmp_path))}
     assert float(rows["opal.porosity_E_049_dd51"]["packlab_value"]) == pytest.approx((30 - 50 / 51) * 0.51**2.5,
                                                                                       rel=1e-3)
@@ -263,31 +277,19 @@ def test_collect_extrapolates_the_porosity_samples_over_their_resolution(tmp_pat
 def test_collect_takes_the_e_only_samples_over_the_whole_range_to_the_papers_resolution(tmp_path):
     # E = (30 - 50 d/D) (1 - eps)^2 GPa exactly at D/d = 5, 7 and 9.2 over six pore fractions and
     # three seeds (E only): m = 2 at every D/d; the E rows and eq. 25's m at D/d = 51 come from
-    # these (porosity_resolution_modulus.py) in place of the compressed samples' over 0.49-0.63.
-    def write(folder, scaled):
-        folder.mkdir()
-        lines = ["scale,opal.pore-fraction,seed,opal.parameters.pores.pore_fraction_of_region,"
-                 "opal.parameters.pores.ratio_to_mean_particle_diameter,opal.results.particles,"
-                 "compress.youngs_modulus,status"]
-        for scale, x in (((0.6, 5.0), (0.75, 7.0)) if scaled else ((1, 138 / 15),)):
-            for eps in (0.39, 0.44, 0.49, 0.54, 0.59, 0.63):
-                for seed in (1, 2, 3):
-                    lines.append(f"{scale},{eps},{seed},{eps},{x},{int(1000 * x)},{(30 - 50 / x) * (1 - eps) ** 2 * 1e9},"
-                                 "done")
-        (folder / "tasks.csv").write_text("\n".join(lines) + "\n")
-
-    write(tmp_path / "paper", False)
-    write(tmp_path / "resolution", True)
+    # these (porosity_resolution.py --modulus) in place of the compressed samples' over 0.49-0.63.
+    fractions, seeds = (0.39, 0.44, 0.49, 0.54, 0.59, 0.63), (1, 2, 3)
+    modulus = lambda eps, x: (30 - 50 / x) * (1 - eps) ** 2 * 1e9  # noqa: E731
+    _write_porosity_samples(tmp_path / "opal_porosity_paper_modulus.csv",
+                            [(f, s, modulus(f, 138 / 15), 0.0) for f in fractions for s in seeds])
+    _write_resolution_study(tmp_path / "resolution", fractions, seeds, modulus, lambda eps, x: 0.0)
     # The compressed samples' rows (another law) that these replace.
     (tmp_path / "opal_porosity_resolution.csv").write_text(
         "# c\nscale,d_over_d,pore_fraction,seeds,particles,youngs_modulus_mean,youngs_modulus_sd,strength_mean,"
         "strength_sd,law,fitted_over,law_mean,law_sd\n1,9.2,0.49,3,20000,6e9,1e8,1.7e8,1e7,,,,\n"
         "D/d=51,51,0.49,9,,7e9,4e8,1.8e8,1e7,,,,\nD/d=51,51,,9,,,,,,eq25_m,0.49-0.63,2.28,0.2\n"
         "D/d=51,51,,9,,,,,,eq26_b,0.49-0.63,7.7,1.2\n")
-    subprocess.run([sys.executable, os.path.join(ROOT, "examples", "opal", "porosity_resolution_modulus.py"),
-                    str(tmp_path / "paper"), str(tmp_path / "resolution"), str(tmp_path)], check=True,
-                   capture_output=True, env={**os.environ, "PYTHONPATH": os.path.join(ROOT, "python") + os.pathsep +
-                                             os.environ.get("PYTHONPATH", "")})
+    _porosity_resolution("--modulus", "--study", tmp_path / "resolution", tmp_path)
     table = reproduction.read_table(str(tmp_path / "opal_porosity_resolution_modulus.csv"))
     laws = [r for r in table if r["law"] == "eq25_m"]
     assert [r["scale"] for r in laws] == ["0.6", "0.75", "1", "D/d=51"]
