@@ -7,10 +7,10 @@
 #  3. the shell count I(r) of a simple cubic lattice for four bin widths;
 #  4. fast compression of 10,000 monodisperse spheres to jamming at several growth rates;
 #  5. the move rule of the shakes, what moves the drop at c = 0.575, and the number of final
-#     shakes M of the bimodal packs (Figs. 12-13).
+#     shakes M of the bimodal packs (Figs. 12-13), also under the two other move rules.
 # The packings are seven studies (docs/study.md): examples/study/scrm_paper.toml (1, 2 at
 # N = 2000), scrm_bi7000.toml, scrm_lattice.toml (3), scrm_jamming.toml (4), scrm_rules.toml,
-# scrm_diagnosis.toml and scrm_mstudy.toml (5), run by `packlab study` into OUT/paper,
+# scrm_diagnosis.toml, scrm_mstudy.toml and scrm_mstudy_rules.toml (5), run by `packlab study` into OUT/paper,
 # OUT/bi7000, ... The folders of the summary (OUT/mono-ls-c0.6/r1, OUT/jam-G0.02,
 # OUT/sc-dr0.01, ...) link to their runs; the averaged RDFs (one `packlab analyze rdf` over the
 # realizations of a case) and summarize.py (tables, docs/data/scrm_*.csv, figures) follow.
@@ -32,7 +32,7 @@ if [ "$P" != 80 ]; then
   sed "s/^seeds = .*/seeds = [$(seq -s, 1 "$P")]/" "$SPECS/scrm_paper.toml" > "$paper"
 fi
 "$PACKLAB" study "$paper" --out "$OUT/paper" --workers "$JOBS"
-for s in rules diagnosis mstudy bi7000 lattice jamming; do
+for s in rules diagnosis mstudy mstudy_rules bi7000 lattice jamming; do
   "$PACKLAB" study "$SPECS/scrm_$s.toml" --out "$OUT/$s" --workers "$JOBS"
 done
 
@@ -87,3 +87,6 @@ for d in "$OUT"/mono-*-c* "$OUT"/bi-*-c* "$OUT"/bi7000-*-c*; do
 done
 
 /usr/bin/python3 "$HERE/summarize.py" "$OUT"
+# The M study under the two other move rules (its own table: docs/data/scrm_mstudy_rules.csv).
+PYTHONPATH="$HERE/../../python:$HERE/../../build/python${PYTHONPATH:+:$PYTHONPATH}" \
+  /usr/bin/python3 "$HERE/mstudy_rules.py" "$OUT/mstudy_rules"

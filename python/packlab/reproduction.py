@@ -756,13 +756,20 @@ def scrm_values(data):
             out[f"scrm.bimodal_gap_{pair}"] = _ours(f(row, "gap_R"), f(row, "gap_R_se"), row["realizations"],
                                                     row["particles"], "minimum of the averaged partial g (SCRM, M = "
                                                     "60); SD by bootstrap")
+    # The same M study under the two other move rules (examples/scrm/mstudy_rules.py), in the notes.
+    rules = {(r["move_rule"], r["final_shakes"]): r for r in read_table(os.path.join(data, "scrm_mstudy_rules.csv"))
+             if r["pair"] == "g11" and r["ratio_to_M60"]}
     for m in ("3", "30"):
         row = bimodal.get((f"bi-scrm-M{m}-c0.6", "g11"))
         if row and row.get("ratio_to_M60"):
             out[f"scrm.m_study_g11_m{m}_vs_m60"] = _ours(
                 100 * (f(row, "ratio_to_M60") - 1), 100 * f(row, "ratio_to_M60_se"), row["realizations"],
                 row["particles"], f"g11(2+) {f(row, 'contact_value'):.2f} at M = {m}, "
-                f"{f(sc, 'contact_value'):.2f} at M = 60; the same seeds grow the same packings (paired)")
+                f"{f(sc, 'contact_value'):.2f} at M = 60; the same seeds grow the same packings (paired)" +
+                "".join(f"; {label}: {100 * (f(other, 'ratio_to_M60') - 1):.1f} +- "
+                        f"{100 * f(other, 'ratio_to_M60_se'):.1f} % ({other['realizations']} seeds)"
+                        for label, other in (("freest rule", rules.get(("freest", m))),
+                                             ("one-trial Metropolis", rules.get(("metropolis1", m)))) if other))
     big = bimodal.get(("bi7000-scrm-c0.6", "g11"))
     if big and sc:
         r, sd = _ratio(big, sc, "contact_value")

@@ -393,6 +393,10 @@ def test_collect_reads_the_scrm_rows(tmp_path):
         "bi-scrm-M60-c0.6,scrm,2000,60,80,g12,6,0.1,1,0,3.3,0.02,,,,,,,,\n"
         "bi-scrm-M60-c0.6,scrm,2000,60,80,g22,5,0.1,1,0,3.1,0.02,,,,,,,,\n"
         "bi-scrm-M3-c0.6,scrm,2000,3,80,g11,16.8,0.2,1.12,0.01,2.31,0.01,,,,,,,,\n")
+    (tmp_path / "scrm_mstudy_rules.csv").write_text(
+        "# c\nmove_rule,final_shakes,realizations,pair,contact_value,contact_value_se,ratio_to_M60,ratio_to_M60_se\n"
+        "freest,3,16,g11,17.1,0.7,1.104,0.039\nfreest,3,16,g12,6.8,0.1,1.09,0.02\nfreest,60,16,g11,15.5,0.5,,\n"
+        "metropolis1,3,16,g11,20.9,0.5,0.981,0.022\n")
     rows = {r["key"]: r for r in reproduction.collect(str(tmp_path))}
     assert float(rows["scrm.g2a_drop_c0575"]["packlab_value"]) == pytest.approx(43.0)
     assert float(rows["scrm.g2a_drop_c0575"]["packlab_sd"]) == pytest.approx(100 * 0.57 * (0.01 ** 2 + (0.1 / 5.7) ** 2)
@@ -412,6 +416,9 @@ def test_collect_reads_the_scrm_rows(tmp_path):
     assert rows["scrm.bimodal_r11_peak_4.54"]["within"] == "n/a"
     assert float(rows["scrm.bimodal_gap_g22"]["packlab_value"]) == pytest.approx(3.1)
     assert float(rows["scrm.m_study_g11_m3_vs_m60"]["packlab_value"]) == pytest.approx(12.0)
+    # The other move rules' M study (g11 only) goes into the note.
+    assert rows["scrm.m_study_g11_m3_vs_m60"]["note"].endswith(
+        "; freest rule: 10.4 +- 3.9 % (16 seeds); one-trial Metropolis: -1.9 +- 2.2 % (16 seeds)")
     assert rows["scrm.m_study_g11_m30_vs_m60"]["within"] == "n/a"  # not in the table
 
 
