@@ -69,7 +69,7 @@ def samples(data, modulus, study=None):
     path = os.path.join(data, scaled)
     table = table_samples(path, SCALED_COLUMNS)
     if study:
-        table = merged(table, study_samples(study, "--study", SCALED_COLUMNS), SCALED_COLUMNS)
+        table = merged(table, study_samples(study, "--study", SCALED_COLUMNS), ("scale",))
         write(path, list(SCALED_COLUMNS) + SAMPLE_COLUMNS, table,
               "examples/study/opal_porosity_resolution" + ("_modulus" if modulus else "") + ".toml: the samples of "
               "opal_porosity_paper.toml scaled by 0.6 and 0.75; particles 15 nm; periodic random pores; static solver; "

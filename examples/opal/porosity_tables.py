@@ -77,6 +77,12 @@ def bulk_study_modulus(data):
     return 1e9 * float(max(rows, key=lambda r: float(r["side_nm"]))["youngs_modulus_gpa"])
 
 
+def sample_key(row, identity=()):
+    """What identifies a sample: its pore fraction and seed, after the `identity` columns (the
+    scale of a study over resolutions)."""
+    return tuple(row[c] for c in identity) + (row["pore_fraction"], row["seed"])
+
+
 def study_samples(out, name, extra=()):
     """One row per finished task of a study folder (SAMPLE_COLUMNS, then the columns `extra` names
     from EXTRA_FIELDS: the scale and D/d of a study over resolutions)."""
@@ -91,7 +97,7 @@ def study_samples(out, name, extra=()):
             row[column] = int(v) if column in INTEGER_COLUMNS else v
         row |= {column: float(t[EXTRA_FIELDS[column]]) for column in extra}
         rows.append(row)
-    return sorted(rows, key=lambda r: tuple(r[c] for c in extra) + (r["pore_fraction"], r["seed"]))
+    return sorted(rows, key=lambda r: sample_key(r, extra))
 
 
 def table_samples(path, extra=()):
@@ -104,15 +110,13 @@ def table_samples(path, extra=()):
     return rows
 
 
-def merged(table, study, extra=()):
+def merged(table, study, identity=()):
     """The per-sample table with a study folder's samples added: a sample of the folder replaces
-    the table's of the same pore fraction and seed (and `extra` columns: the scale; a study run
-    in parts, e.g. seeds 4-5 later, adds to what the table holds)."""
-    def key(r):
-        return tuple(r[c] for c in extra) + (r["pore_fraction"], r["seed"])
-
-    rows = {key(r): r for r in table}
-    rows.update({key(r): r for r in study})
+    the table's with the same key (sample_key: pore fraction and seed, after the `identity`
+    columns, the scale; a study run in parts, e.g. seeds 4-5 later, adds to what the table
+    holds)."""
+    rows = {sample_key(r, identity): r for r in table}
+    rows.update({sample_key(r, identity): r for r in study})
     return [rows[k] for k in sorted(rows)]
 
 
