@@ -19,7 +19,13 @@ thinned at each D/d to the paper's density of 668 kg/m^3): DATA/opal_coating_den
 DATA/opal_coating_density_extrapolation.csv, the same columns (coating_nm is the nominal 20,
 coating_m the thickness used).
 
-usage: coating_tables.py STUDY_OUT [DATA] [--density]   (DATA defaults to docs/data of this checkout)"""
+With --merge, the study's samples are added to the per-sample table already in DATA (a sample of
+the study replaces the table's of the same coating, D/d and seed; the others are kept), so that a
+study run in parts (e.g. coating_resolution.toml's 34 nm at D/d = 14.3 alone, after the rest) adds
+to what the table holds, and both tables regenerate from DATA.
+
+usage: coating_tables.py STUDY_OUT [DATA] [--density] [--merge]
+       (DATA defaults to docs/data of this checkout)"""
 
 import math
 import os
@@ -27,6 +33,7 @@ import sys
 
 import numpy as np
 
+from packlab.reproduction import read_table
 from packlab.studies import finished_tasks
 from packlab.tables import write_table
 
@@ -38,11 +45,28 @@ SAMPLE_COLUMNS = ["coating_nm", "coating_m", "pore_to_particle_diameter", "seed"
                   "bonds", "porosity", "density_kg_m3", "youngs_modulus_gpa", "strength_mpa", "strain_at_peak",
                   "broken_bonds", "seconds"]
 QUANTITIES = ("youngs_modulus_gpa", "strength_mpa", "density_kg_m3")
+INTEGER_COLUMNS = ("coating_nm", "seed", "particles", "titania_particles", "bonds", "broken_bonds")
+OPTIONAL_COLUMNS = ("strength_mpa", "strain_at_peak")  # empty for E-only runs
+
+
+def sample_key(row):
+    """What identifies a sample: its coating, resolution and seed."""
+    return row["coating_nm"], row["pore_to_particle_diameter"], row["seed"]
+
+
+def table_samples(path):
+    """The per-sample table `path` as rows of numbers ([] if missing)."""
+    def value(column, text):
+        if column in INTEGER_COLUMNS:
+            return int(float(text))
+        return "" if text == "" and column in OPTIONAL_COLUMNS else float(text)
+    return [{c: value(c, r[c]) for c in SAMPLE_COLUMNS} for r in read_table(path)]
 
 
 def main(argv):
     density = "--density" in argv
-    argv = [a for a in argv if a != "--density"]
+    merge = "--merge" in argv
+    argv = [a for a in argv if a not in ("--density", "--merge")]
     if len(argv) < 2:
         sys.exit(__doc__)
     out = argv[1]
@@ -67,8 +91,12 @@ def main(argv):
             "strength_mpa": float(t["compress.strength"]) * 1e-6 if breaks else "",
             "strain_at_peak": float(t["compress.strain_at_peak"]) if breaks else "", "broken_bonds": breaks,
             "seconds": float(t["compress.seconds"])})
-    samples.sort(key=lambda r: (r["coating_nm"], r["pore_to_particle_diameter"], r["seed"]))
     path = os.path.join(data, name + ".csv")
+    if merge:
+        kept = {sample_key(r): r for r in table_samples(path)}
+        kept.update({sample_key(r): r for r in samples})
+        samples = list(kept.values())
+    samples.sort(key=sample_key)
     write_table(path, {k: [r[k] for r in samples] for k in SAMPLE_COLUMNS},
                 f"examples/opal/{spec}: FCC opal, titania coating c nm x D / 762 nm"
                 + (" thinned at each D/d to the paper's density 668 kg/m^3 (coating_m: the thickness used)"

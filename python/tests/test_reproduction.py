@@ -367,6 +367,54 @@ def test_collect_reads_the_coating_and_bulk_studies(tmp_path):
     assert rows["opal.bulk_strength"]["within"] == "no"
 
 
+def _write_coating_study(folder, samples):
+    """tasks.csv of a coating study: (coating_nm, D/d, seed, E [GPa]) per sample, E only."""
+    folder.mkdir()
+    lines = ["coating_nm,seed,opal.coating,opal.parameters.pores.ratio_to_mean_particle_diameter,opal.results.particles,"
+             "opal.results.titania_particles,opal.results.bonds,opal.results.porosity,opal.results.density_kg_m3,"
+             "compress.youngs_modulus,compress.strength,compress.strain_at_peak,compress.broken_bonds,compress.seconds,"
+             "status"]
+    lines += [f"{c},{seed},{c * 1e-9 * x / 51},{x},{int(100 * x)},{int(30 * x)},{int(900 * x)},0.6,950,{e * 1e9},1.0,0,0,1,done"
+              for c, x, seed, e in samples]
+    (folder / "tasks.csv").write_text("\n".join(lines) + "\n")
+
+
+def test_coating_tables_merge_adds_a_part_study_to_the_table(tmp_path):
+    # The 34 nm coating with E = 12 - 30 d/D (GPa) at D/d = 10, 20, 25, then the D/d = 15 samples
+    # run alone: with --merge the table holds all four and the 1/x law gives 12 - 30/51 at D/d = 51
+    # exactly; a merged sample replaces the table's of the same coating, D/d and seed.
+    script = os.path.join(ROOT, "examples", "opal", "coating_tables.py")
+    env = {**os.environ, "PYTHONPATH": os.path.join(ROOT, "python")}
+
+    def tables(study, *flags):
+        subprocess.run([sys.executable, script, str(study), str(tmp_path), *flags], check=True, capture_output=True,
+                       env=env)
+        samples = reproduction.read_table(str(tmp_path / "opal_coating_resolution.csv"))
+        estimate = [r for r in reproduction.read_table(str(tmp_path / "opal_coating_extrapolation.csv"))
+                    if r["quantity"] == "youngs_modulus_gpa" and r["law"] == "estimate"]
+        return samples, estimate
+
+    def modulus(x):
+        return 12 - 30 / x
+
+    first = [(34, x, seed, modulus(x)) for x in (10.0, 20.0, 25.0) for seed in (1, 2)]
+    first[0] = (34, 10.0, 1, 99.0)  # wrong, replaced below
+    _write_coating_study(tmp_path / "first", first)
+    samples, _ = tables(tmp_path / "first")
+    assert len(samples) == 6
+    _write_coating_study(tmp_path / "part", [(34, 15.0, seed, modulus(15.0)) for seed in (1, 2)]
+                         + [(34, 10.0, 1, modulus(10.0))])
+    samples, estimate = tables(tmp_path / "part", "--merge")
+    assert sorted((float(r["pore_to_particle_diameter"]), int(r["seed"])) for r in samples) == [
+        (x, seed) for x in (10.0, 15.0, 20.0, 25.0) for seed in (1, 2)]
+    assert all(float(r["youngs_modulus_gpa"]) == pytest.approx(modulus(float(r["pore_to_particle_diameter"])))
+               for r in samples)
+    assert float(estimate[0]["at_target"]) == pytest.approx(modulus(51.0), rel=1e-9)
+    assert int(estimate[0]["samples"]) == 8
+    samples, _ = tables(tmp_path / "part")  # without --merge: the study's samples alone
+    assert len(samples) == 3
+
+
 def test_collect_reads_the_scrm_rows(tmp_path):
     # Two cases per c with known contact values: the drop is 1 - SCRM/LS with the SD of a ratio of
     # independent estimates; the M study is read from the paired ratio of the table.
