@@ -611,6 +611,63 @@ TEST(StaticSolver, SequentialLinearAnalysisWithSparseChecksRollsBackWhenACheckFa
   EXPECT_GT(rolled_back.factorizations, static_cast<std::size_t>(rolled_back.rollbacks));
 }
 
+// The stop past the peak (stop_drop). Each break of the sequential linear analysis takes a link
+// out of a linear network, so the stress at unit strain never rises: once max_strain times it
+// is below stop_drop x peak no later point can come back above that, and the run stops there
+// instead of following a snap-back (breaks at falling strains) below the peak's strain. Against
+// the run to max_strain (stop_drop 0): its stress per unit strain falls at every break (the
+// bound), and for each stop_drop the stopped run is that run's first points, with the same peak,
+// strain at peak and E, ending at the first break where either rule holds (predicted from the
+// full curve). Both rules end some of the runs.
+TEST(StaticSolver, StopDropEndsTheRunWhereNoLaterPointCanComeBackAboveIt) {
+  const Packing p = random_bonded_sample(300, 3);
+  UniaxialCompressionSetup setup;
+  setup.options.threads = 1;
+  setup.options.max_strain = 0.05;
+  setup.finish(p);
+  for (auto& b : setup.options.bond_materials) b.compressive_breakage = true;
+  setup.options.solver = "static";
+  setup.options.stop_drop = 0.0;
+  const UniaxialCompressionResult full = run_uniaxial_compression(p, setup.options);
+  const std::vector<UniaxialCompressionPoint>& curve = full.curve;
+  ASSERT_GT(curve.size(), 50u);
+  // Point k >= 1 lies on the network after k - 1 break events: its stress per unit strain.
+  auto per_strain = [&](std::size_t k) { return curve[k].stress / curve[k].strain; };
+  for (std::size_t k = 2; k < curve.size(); ++k) EXPECT_LE(per_strain(k), per_strain(k - 1) * (1 + 1e-9)) << k;
+  int by_drop = 0, by_bound = 0;
+  for (double stop_drop : {0.3, 0.5, 0.7, 0.85, 0.95}) {
+    // The loop's step i (i >= 1 break events) tests the network after them against the last
+    // break's strain (point i) and the peak of points 1..i.
+    double peak = 0.0, strain_at_peak = 0.0;
+    std::size_t stop = 0;
+    bool bound = false;
+    for (std::size_t i = 1; i + 1 < curve.size() && stop == 0; ++i) {
+      if (curve[i].stress > peak) peak = curve[i].stress, strain_at_peak = curve[i].strain;
+      const double stress1 = per_strain(i + 1), strain = curve[i].strain;
+      const bool dropped = strain >= strain_at_peak && strain * stress1 < stop_drop * peak;
+      bound = !dropped && setup.options.max_strain * stress1 < stop_drop * peak;
+      if (dropped || bound) stop = i;
+    }
+    ASSERT_GT(stop, 0u) << stop_drop;
+    (bound ? by_bound : by_drop) += 1;
+    setup.options.stop_drop = stop_drop;
+    const UniaxialCompressionResult stopped = run_uniaxial_compression(p, setup.options);
+    EXPECT_EQ(stopped.strength, full.strength) << stop_drop;
+    EXPECT_EQ(stopped.strain_at_peak, full.strain_at_peak) << stop_drop;
+    EXPECT_EQ(stopped.youngs_modulus, full.youngs_modulus) << stop_drop;
+    ASSERT_EQ(stopped.curve.size(), stop + 2) << stop_drop;
+    for (std::size_t k = 0; k <= stop; ++k)
+      EXPECT_EQ(stopped.curve[k].stress, curve[k].stress) << stop_drop << " " << k;
+    EXPECT_EQ(stopped.curve.back().strain, curve[stop].strain);
+    EXPECT_DOUBLE_EQ(stopped.curve.back().stress, curve[stop].strain * per_strain(stop + 1));
+    EXPECT_EQ(stopped.broken_bonds, curve[stop].broken_bonds);
+    EXPECT_NE(stopped.stop_reason.find(bound ? "up to max_strain" : "after the peak"), std::string::npos)
+        << stop_drop << ": " << stopped.stop_reason;
+  }
+  EXPECT_GT(by_drop, 0);
+  EXPECT_GT(by_bound, 0);
+}
+
 TEST(StaticSolver, EnergyCheckOfADowndatedFactorEqualsThatOfAFreshFactorization) {
   // The refinement's energy check r^T K^-1 r takes the forward half of a solve on CHOLMOD's
   // factors (LL^T fresh, LDL^T after downdates): against Eigen's full solve on the same links.

@@ -104,7 +104,8 @@ void add_uniaxial_compression_options(ConfigSchema& schema, mechanics::UniaxialC
   schema.number("max_strain", o.max_strain, "Largest strain")
       .range({0.0, 0.5, true, true})
       .number("stop_drop", o.stop_drop,
-              "Stop past the peak once the stress is below this fraction of it (0 = run to max_strain)")
+              "Stop past the peak once the stress is below this fraction of it (static solver: also once it "
+              "cannot come back above it before max_strain; 0 = run to max_strain)")
       .range({0.0, 1.0, false, true})
       .text("sides", o.sides, "periodic: keep the model's periodic x, y; open: free-standing pillar")
       .text("plate", o.plate,

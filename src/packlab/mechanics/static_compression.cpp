@@ -307,16 +307,28 @@ UniaxialCompressionResult run_static_uniaxial_compression(const Packing& bonded_
     const LinkScan scan = scan_links(q);
     const double stress1 = scan.plate_force / result.area;  // stress at unit strain
     last_stress1 = stress1;
-    if (!result.breaks.empty()) {
+    if (!result.breaks.empty() && options.stop_drop > 0.0) {
       // The load drop at the last break's strain: stop once past the peak below stop_drop x peak.
       const double strain = result.break_strain.back();
-      if (options.stop_drop > 0.0 && strain >= result.strain_at_peak && strain * stress1 < options.stop_drop * peak) {
+      const bool dropped = strain >= result.strain_at_peak && strain * stress1 < options.stop_drop * peak;
+      // Or once no later point can come back above stop_drop x peak. A snap-back (breaks at
+      // falling strains after the peak) can otherwise run for thousands of breaks below the
+      // peak's strain before the test above applies. The stress at unit strain never rises: a
+      // link taken out of a linear network without geometric stiffness lowers the plate's
+      // stiffness (its matrix drops by a positive semi-definite term), so every later point has
+      // stress <= max_strain x stress1. The peak, its strain and E are those of the longer run;
+      // only the tail below stop_drop x peak is left out.
+      const bool cannot_recover = options.max_strain * stress1 < options.stop_drop * peak;
+      if (dropped || cannot_recover) {
         if (!solver.check_last()) {
           roll_back();
           continue;
         }
         add_point(strain, stress1, scan.energy);
-        result.stop_reason = fmt::format("stress fell below {:g} x peak after the peak", options.stop_drop);
+        result.stop_reason =
+            dropped ? fmt::format("stress fell below {:g} x peak after the peak", options.stop_drop)
+                    : fmt::format("stress below {:g} x peak up to max_strain (the stress at unit strain only falls)",
+                                  options.stop_drop);
         break;
       }
     }
