@@ -72,6 +72,18 @@ Packing diluted_fcc(double keep) {
 
 Packing random_bonded_sample(long n, unsigned seed) { return test::random_bonded_sample(n, seed, r); }
 
+// The sequential linear analysis of a random sample to 5 % strain, one thread, with eq. 16 on
+// compressed bonds too (its peak then lies near 2 % strain, well before the end of the run).
+UniaxialCompressionSetup static_compression_to_five_percent(const Packing& p) {
+  UniaxialCompressionSetup setup;
+  setup.options.threads = 1;
+  setup.options.max_strain = 0.05;
+  setup.finish(p);
+  for (auto& b : setup.options.bond_materials) b.compressive_breakage = true;
+  setup.options.solver = "static";
+  return setup;
+}
+
 dem::EngineConfig contact_bond_config(double kn, double ks) {
   dem::EngineConfig c;
   c.contact_law = "linear";
@@ -551,12 +563,7 @@ TEST(StaticSolver, ResolveAfterRemovingLinksEqualsAFreshFactorization) {
 TEST(StaticSolver, SequentialLinearAnalysisWithSparseChecksRollsBackWhenACheckFails) {
   if (static_solver_backends().front() != "cholmod") GTEST_SKIP() << "built without CHOLMOD";
   const Packing p = random_bonded_sample(300, 3);
-  UniaxialCompressionSetup setup;
-  setup.options.threads = 1;
-  setup.options.max_strain = 0.05;
-  setup.finish(p);
-  for (auto& b : setup.options.bond_materials) b.compressive_breakage = true;
-  setup.options.solver = "static";
+  UniaxialCompressionSetup setup = static_compression_to_five_percent(p);
   setup.options.check_interval = 1;
   const UniaxialCompressionResult each = run_uniaxial_compression(p, setup.options);
   ASSERT_GT(each.broken_bonds, 40u);
@@ -621,12 +628,7 @@ TEST(StaticSolver, SequentialLinearAnalysisWithSparseChecksRollsBackWhenACheckFa
 // full curve). Both rules end some of the runs.
 TEST(StaticSolver, StopDropEndsTheRunWhereNoLaterPointCanComeBackAboveIt) {
   const Packing p = random_bonded_sample(300, 3);
-  UniaxialCompressionSetup setup;
-  setup.options.threads = 1;
-  setup.options.max_strain = 0.05;
-  setup.finish(p);
-  for (auto& b : setup.options.bond_materials) b.compressive_breakage = true;
-  setup.options.solver = "static";
+  UniaxialCompressionSetup setup = static_compression_to_five_percent(p);
   setup.options.stop_drop = 0.0;
   const UniaxialCompressionResult full = run_uniaxial_compression(p, setup.options);
   const std::vector<UniaxialCompressionPoint>& curve = full.curve;
