@@ -18,8 +18,10 @@ stopped after its first linear solve). Writes
   (--modulus: _modulus.csv, E only)           strength (mean and SD over the seeds every scale
                                               holds); then per scale (pore_fraction empty) the
                                               laws fitted per seed over the pore fractions all
-                                              scales hold and (where a scale has more) over all of
-                                              its pore fractions (column fitted_over), as
+                                              scales hold, (where a scale has more) over all of
+                                              its pore fractions and (not with --modulus, where
+                                              the shared ones reach beyond it) over
+                                              COMPARISON_RANGE, 0.49-0.63 (column fitted_over), as
                                               porosity_tables.py fits them
                                               (packlab.fit_porosity_law; eps the box's pore
                                               fraction): eq. 25 E0 and m (E0 free), eq. 24 b (E0 of
@@ -31,7 +33,8 @@ stopped after its first linear solve). Writes
                                               D/d = 51 as resolution_extrapolation.py does (q =
                                               q_inf + c d/D over every sample or per-seed fit;
                                               uncertainty: the fit's standard error and half the
-                                              spread of the laws 1/x, 1/x^2, 1/sqrt(x))
+                                              spread of the laws 1/x, 1/x^2, 1/sqrt(x)), those over
+                                              the shared pore fractions first
 
 usage: porosity_resolution.py [--modulus] [--study RESOLUTION_OUT] [DATA]
        (DATA defaults to docs/data of this checkout; needs the packlab Python module:
@@ -57,6 +60,9 @@ SCALE1_PORE_DIAMETER = 138e-9  # opal_porosity_paper.toml
 
 
 SCALED_COLUMNS = ("scale", "d_over_d")
+# The pore fractions of the first compressed study (0.49-0.63): the laws over them beside those
+# over the paper's six show how the range of the fit moves them (docs/reproduction.md, eq. 26).
+COMPARISON_RANGE = (0.49, 0.63)
 TABLES = {False: ("opal_porosity_paper.csv", "opal_porosity_resolution_samples.csv", "opal_porosity_resolution.csv"),
           True: ("opal_porosity_paper_modulus.csv", "opal_porosity_resolution_modulus_samples.csv",
                  "opal_porosity_resolution_modulus.csv")}  # scale 1, the scaled samples, the output
@@ -139,7 +145,10 @@ def main(argv):
         rows.append({c: kw.get(c, "") for c in columns})
 
     per_sample = {}  # (pore fraction, quantity) -> [(D/d, value)]
-    per_seed_law = {}  # law -> [(D/d, value)]
+    narrow = [f for f in fractions if COMPARISON_RANGE[0] <= f <= COMPARISON_RANGE[1]]
+    if args.modulus or len(narrow) < 3 or narrow == fractions:
+        narrow = None
+    per_seed_law = {}  # (fitted over, law) -> [(D/d, value)], the shared pore fractions first
     for s in scales:
         ratio = next(found[k][0] for k in found if k[0] == s)
         own = sorted({k[1] for k in found if k[0] == s})
@@ -156,15 +165,15 @@ def main(argv):
                 particles=f"{mean_sd([r['particles'] for r in level])[0]:.0f}", **values)
         # The laws over the pore fractions every scale holds (the trend below), and over all of
         # this scale's where it holds more (the paper's six, 0.39-0.63).
-        for over in ([fractions, own] if own != fractions else [fractions]):
+        for over in [fractions] + ([own] if own != fractions else []) + ([narrow] if narrow else []):
             laws = [seed_laws([found[(s, f, seed)][1] for f in over], args.modulus) for seed in seeds
                     if all((s, f, seed) in found for f in over)]
             if not laws:  # no seed holds every pore fraction of the range yet
                 continue
             for name in laws[0]:
                 values = [law[name] for law in laws]
-                if over is fractions:
-                    per_seed_law.setdefault(name, []).extend((ratio, v) for v in values)
+                if over is fractions or over is narrow:
+                    per_seed_law.setdefault((over is narrow, name), []).extend((ratio, v) for v in values)
                 m, sd = mean_sd(values)
                 row(scale=f"{s:g}", d_over_d=f"{ratio:.4g}", seeds=len(values), law=name,
                     fitted_over=f"{over[0]:g}-{over[-1]:g}", law_mean=f"{m:.5g}", law_sd=f"{sd:.3g}")
@@ -176,15 +185,17 @@ def main(argv):
         value, err = at_target
         row(scale=target, d_over_d=f"{TARGET:g}", pore_fraction=f"{f:g}", seeds=len(pairs),
             **{quantity + "_mean": f"{value:.6g}", quantity + "_sd": f"{err:.3g}"})
-    for name, pairs in per_seed_law.items():
+    for (is_narrow, name), pairs in sorted(per_seed_law.items(), key=lambda item: item[0][0]):
         at_target = extrapolate([p[0] for p in pairs], [p[1] for p in pairs])
         if at_target is None:
             continue
         value, err = at_target
-        row(scale=target, d_over_d=f"{TARGET:g}", seeds=len(pairs), law=name,
-            fitted_over=f"{fractions[0]:g}-{fractions[-1]:g}", law_mean=f"{value:.5g}", law_sd=f"{err:.3g}")
+        over = narrow if is_narrow else fractions
+        span = f"{over[0]:g}-{over[-1]:g}"
+        row(scale=target, d_over_d=f"{TARGET:g}", seeds=len(pairs), law=name, fitted_over=span,
+            law_mean=f"{value:.5g}", law_sd=f"{err:.3g}")
         print(f"{name}: " + ", ".join(f"D/d {r['d_over_d']} over {r['fitted_over']}: {r['law_mean']} +- {r['law_sd']}"
-                                      for r in rows if r["law"] == name))
+                                      for r in rows if r["law"] == name and r["fitted_over"] == span))
     write(os.path.join(args.data, TABLES[args.modulus][2]), columns, rows,
           "examples/opal/porosity_resolution.py" + (" --modulus: E-only" if args.modulus else ": the")
           + " random-pore porosity samples at scales " + ", ".join(f"{s:g}" for s in scales)

@@ -443,7 +443,9 @@ def opal_porosity_resolution_values(data):
                     out[f"opal.porosity_{name}_{level}_dd51"] = _ours(
                         float(r[column + "_mean"]) * scale, float(r[column + "_sd"]) * scale, int(r["seeds"]), span,
                         f"{what} (values there: {', '.join(f'{v:.3g}' for v in at)})")
-        elif r["law"] in ("eq25_m", "eq24_b", "eq26_b"):
+        elif r["law"] in ("eq25_m", "eq24_b", "eq26_b") and f"opal.{r['law']}_dd51" not in out:
+            # The first row of a law: over the pore fractions every scale holds (a comparison
+            # range, 0.49-0.63, follows it).
             at = [float(m["law_mean"]) for m in rows if m["law"] == r["law"] and m["fitted_over"] == r["fitted_over"]
                   and not m["scale"].startswith("D/d")]
             out[f"opal.{r['law']}_dd51"] = _ours(

@@ -303,6 +303,29 @@ def test_collect_takes_the_e_only_samples_over_the_whole_range_to_the_papers_res
     assert float(rows["opal.eq26_b_dd51"]["packlab_value"]) == pytest.approx(7.7)
 
 
+def test_porosity_resolution_fits_the_comparison_range_beside_the_shared_one(tmp_path):
+    # Strength = 9 exp(-8 eps) GPa from 0.49 up and flatter below: over 0.49-0.63 (the comparison
+    # range) eq. 26's b is 8 at every D/d and at 51; the rows take the laws over all six pore
+    # fractions, whose b is smaller.
+    fractions, seeds = (0.39, 0.44, 0.49, 0.54, 0.59, 0.63), (1, 2)
+    modulus = lambda eps, x: 30e9 * (1 - eps) ** 2.5  # noqa: E731
+    strength = lambda eps, x: 9e9 * math.exp(-8 * max(eps, 0.49) - 2 * min(eps - 0.49, 0.0))  # noqa: E731
+    _write_porosity_samples(tmp_path / "opal_porosity_paper.csv",
+                            [(f, s, modulus(f, 138 / 15), strength(f, 138 / 15)) for f in fractions for s in seeds])
+    _write_resolution_study(tmp_path / "resolution", fractions, seeds, modulus, strength)
+    _porosity_resolution("--study", tmp_path / "resolution", tmp_path)
+    table = reproduction.read_table(str(tmp_path / "opal_porosity_resolution.csv"))
+    laws = {(r["scale"], r["fitted_over"]): float(r["law_mean"]) for r in table if r["law"] == "eq26_b"}
+    assert sorted(laws) == sorted((scale, over) for scale in ("0.6", "0.75", "1", "D/d=51")
+                                  for over in ("0.39-0.63", "0.49-0.63"))
+    assert all(b == pytest.approx(8.0, rel=1e-6) for (_, over), b in laws.items() if over == "0.49-0.63")
+    whole = laws[("D/d=51", "0.39-0.63")]
+    assert whole < 7.0
+    rows = {r["key"]: r for r in reproduction.collect(str(tmp_path))}
+    assert float(rows["opal.eq26_b_dd51"]["packlab_value"]) == pytest.approx(whole, rel=1e-4)
+    assert "over pore fractions 0.39-0.63" in rows["opal.eq26_b_dd51"]["note"]
+
+
 def test_collect_reads_the_coating_and_bulk_studies(tmp_path):
     # Coated opals with E = 6 - 20 d/D (GPa) exactly at D/d = 10, 15, 20, 25 and the strength
     # 250 - 500 d/D (MPa) where the run broke bonds (D/d <= 15); pore-free samples whose K_E is
