@@ -326,6 +326,25 @@ def test_porosity_resolution_fits_the_comparison_range_beside_the_shared_one(tmp
     assert "over pore fractions 0.39-0.63" in rows["opal.eq26_b_dd51"]["note"]
 
 
+def test_stop_rule_finds_where_each_rule_ends_a_curve(tmp_path):
+    # An envelope with its peak (100 at strain 0.1) at the 1st break that then snaps back: the
+    # stress per unit strain after each break is 800, 500, 100, 10, 5, the break strains 0.1,
+    # 0.09, 0.08, 0.12. With stop_drop 0.5 and max_strain 0.2 the bound (0.2 x 100 = 20 < 50)
+    # holds after the 3rd break, the past-the-peak rule only after the 5th, back at a strain >= 0.1.
+    run = tmp_path / "run"
+    run.mkdir()
+    points = [(0.0, 0.0), (0.1, 100.0), (0.1, 80.0), (0.09, 45.0), (0.08, 8.0), (0.12, 1.2), (0.12, 0.6)]
+    (run / "curve.csv").write_text("step,strain,stress,broken_bonds\n" + "".join(
+        f"{k},{e},{sigma},{k}\n" for k, (e, sigma) in enumerate(points)))
+    out = tmp_path / "stops.csv"
+    subprocess.run([sys.executable, os.path.join(ROOT, "examples", "opal", "stop_rule.py"), "--stop-drop", "0.5",
+                    "--max-strain", "0.2", str(out), str(run)], check=True, capture_output=True)
+    row = reproduction.read_table(str(out))[0]
+    assert float(row["peak_mpa"]) == pytest.approx(1e-4) and row["peak_break"] == "1"
+    assert row["stop_bound_break"] == "3"
+    assert row["stop_past_the_peak_break"] == "5"
+
+
 def test_collect_reads_the_coating_and_bulk_studies(tmp_path):
     # Coated opals with E = 6 - 20 d/D (GPa) exactly at D/d = 10, 15, 20, 25 and the strength
     # 250 - 500 d/D (MPa) where the run broke bonds (D/d <= 15); pore-free samples whose K_E is
