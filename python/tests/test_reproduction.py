@@ -328,12 +328,13 @@ def test_porosity_resolution_fits_the_comparison_range_beside_the_shared_one(tmp
 
 def test_stop_rule_finds_where_each_rule_ends_a_curve(tmp_path):
     # An envelope with its peak (100 at strain 0.1) at the 1st break that then snaps back: the
-    # stress per unit strain after each break is 800, 500, 100, 10, 5, the break strains 0.1,
-    # 0.09, 0.08, 0.12. With stop_drop 0.5 and max_strain 0.2 the bound (0.2 x 100 = 20 < 50)
-    # holds after the 3rd break, the past-the-peak rule only after the 5th, back at a strain >= 0.1.
+    # stress per unit strain after breaks 1-5 is 800, 520, 100, 10, 5, the strains of breaks 1-5
+    # 0.1, 0.1, 0.09, 0.08, 0.12. With stop_drop 0.5 and max_strain 0.2 the bound (0.2 x 100 = 20
+    # < 50) holds after the 3rd break, the past-the-peak rule only after the 5th, back at a
+    # strain >= 0.1 (after the 2nd: 0.1 x 520 = 52, not below 50).
     run = tmp_path / "run"
     run.mkdir()
-    points = [(0.0, 0.0), (0.1, 100.0), (0.1, 80.0), (0.09, 45.0), (0.08, 8.0), (0.12, 1.2), (0.12, 0.6)]
+    points = [(0.0, 0.0), (0.1, 100.0), (0.1, 80.0), (0.09, 46.8), (0.08, 8.0), (0.12, 1.2), (0.12, 0.6)]
     (run / "curve.csv").write_text("step,strain,stress,broken_bonds\n" + "".join(
         f"{k},{e},{sigma},{k}\n" for k, (e, sigma) in enumerate(points)))
     out = tmp_path / "stops.csv"

@@ -9,7 +9,8 @@
 //    failure_ratio (its criteria, eq. 16-17 for the elastic bond); the bond with the largest
 //    ratio breaks at strain 1 / ratio, where the envelope records (strain, stress); it is
 //    removed and the network solved again, until the stress at a break falls below stop_drop x
-//    the peak after the peak, the strain passes max_strain, or max_breaks bonds have broken.
+//    the peak after the peak, max_strain times the stress per unit strain does (no later point
+//    can come back above it), the strain passes max_strain, or max_breaks bonds have broken.
 //    Snapshots (bond strains, particle stresses) at the requested strains from the network as
 //    it stands then. Contacts between unbonded particles enter with their stiffness at the
 //    start; they neither open nor slide, and a broken bond does not turn into a contact.

@@ -41,8 +41,8 @@
 #pragma once
 
 #include <array>
-#include <cstddef>
 #include <cmath>
+#include <cstddef>
 #include <cstdint>
 #include <functional>
 #include <istream>
@@ -90,7 +90,7 @@ struct UniaxialCompressionOptions {
   double strain_rate = 1e7;                              // [1/s]
   double max_strain = 0.05;                              // [-]
   // Stop once past the peak when the stress has fallen below stop_drop x peak (0: run to
-  // max_strain).
+  // max_strain); the static solver also stops once no later point can come back above it.
   double stop_drop = 0.6;
   std::string sides = "periodic";  // "periodic" | "open"
   double substrate_layers = 2.0;   // used when the model has no fixed particle
