@@ -35,7 +35,7 @@ import numpy as np
 
 from packlab.reproduction import read_table
 from packlab.studies import finished_tasks
-from packlab.tables import write_table
+from packlab.tables import merged_rows, write_table
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, HERE)
@@ -92,11 +92,7 @@ def main(argv):
             "strain_at_peak": float(t["compress.strain_at_peak"]) if breaks else "", "broken_bonds": breaks,
             "seconds": float(t["compress.seconds"])})
     path = os.path.join(data, name + ".csv")
-    if merge:
-        kept = {sample_key(r): r for r in table_samples(path)}
-        kept.update({sample_key(r): r for r in samples})
-        samples = list(kept.values())
-    samples.sort(key=sample_key)
+    samples = merged_rows(table_samples(path), samples, sample_key) if merge else sorted(samples, key=sample_key)
     write_table(path, {k: [r[k] for r in samples] for k in SAMPLE_COLUMNS},
                 f"examples/opal/{spec}: FCC opal, titania coating c nm x D / 762 nm"
                 + (" thinned at each D/d to the paper's density 668 kg/m^3 (coating_m: the thickness used)"

@@ -41,7 +41,7 @@ import sys
 import packlab
 from packlab.reproduction import mean_sd, read_table
 from packlab.studies import finished_tasks
-from packlab.tables import write_table
+from packlab.tables import merged_rows, write_table
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 PAPER_EQ26_B = 3.85  # bpm-inverse-opals eq. 26: strength = 576.3 exp(-3.85 eps) MPa
@@ -115,9 +115,7 @@ def merged(table, study, identity=()):
     the table's with the same key (sample_key: pore fraction and seed, after the `identity`
     columns, the scale; a study run in parts, e.g. seeds 4-5 later, adds to what the table
     holds)."""
-    rows = {sample_key(r, identity): r for r in table}
-    rows.update({sample_key(r, identity): r for r in study})
-    return [rows[k] for k in sorted(rows)]
+    return merged_rows(table, study, lambda r: sample_key(r, identity))
 
 
 def check_same_samples(strength, modulus):

@@ -74,3 +74,13 @@ def read_table(path):
         except ValueError:
             columns[name] = values
     return columns
+
+
+def merged_rows(table, added, key):
+    """The rows of ``table`` with those of ``added`` merged in, sorted by ``key`` (a function of
+    a row): a row of ``added`` replaces the table's row with the same key, the others are kept.
+    How a study run in parts (more seeds, one missing level) adds its samples to a per-sample
+    table kept in docs/data."""
+    rows = {key(r): r for r in table}
+    rows.update({key(r): r for r in added})
+    return [rows[k] for k in sorted(rows)]
