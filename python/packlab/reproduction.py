@@ -506,13 +506,14 @@ def opal_structure_values(data):
             rows = [r for r in rows if float(r["pore_to_particle_diameter"]) == largest]
             m, s = mean_sd([float(r[column]) * scale for r in rows])
             n = sorted(int(r["particles"]) for r in rows)
-            return m, s, len(rows), f"{n[0]}-{n[-1]}", largest
+            b = sorted(round(float(r["bonds"])) for r in rows) if all(r.get("bonds") for r in rows) else []
+            return m, s, len(rows), f"{n[0]}-{n[-1]}", largest, (f", {b[0]}-{b[-1]} bonds" if b else "")
 
         for key, column in (("opal.E_paper_bonds", "youngs_modulus_gpa"), ("opal.strength_paper_bonds", "strength_mpa")):
-            m, s, n, particles, largest = at_largest(column)
+            m, s, n, particles, largest, bonds = at_largest(column)
             out[key] = _ours(m, s, n, particles, f"FCC opal at D/d = {largest:g} (the largest with this quantity; paper: "
-                                                 "51), paper's bonds, static solver; three FBA packings; the trend over "
-                                                 "D/d is the size_study row")
+                                                 f"51){bonds}, paper's bonds, static solver; three FBA packings; the trend "
+                                                 "over D/d is the size_study row")
     extrapolation = read_table(os.path.join(data, "opal_resolution_extrapolation.csv"))
     counts = sorted(int(r["particles"]) for r in resolution)
     span = f"{counts[0]}-{counts[-1]}" if counts else ""

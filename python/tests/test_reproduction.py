@@ -217,6 +217,9 @@ def test_collect_reads_the_opal_structure_rows_and_the_resolution_extrapolation(
     assert rows["opal.size_study_strength_dd51"]["realizations"] == 4  # no strength at D/d = 40
     assert float(rows["opal.coordination"]["packlab_value"]) == pytest.approx(10 - 20 / 51, rel=1e-4)
     assert float(rows["opal.E_paper_bonds"]["packlab_value"]) == pytest.approx(2 - 5 / 40)  # at the largest D/d
+    assert "D/d = 40 (" in rows["opal.E_paper_bonds"]["note"]
+    assert "51), 38000-38019 bonds," in rows["opal.E_paper_bonds"]["note"]  # 9.5 per particle at D/d = 40
+    assert "51), 18000-18018 bonds," in rows["opal.strength_paper_bonds"]["note"]  # 9 per particle at D/d = 20
     assert float(rows["opal.strength_paper_bonds"]["packlab_value"]) == pytest.approx(35.0)  # largest with a strength
     assert float(rows["opal.K_E"]["packlab_value"]) == pytest.approx(3.5)
     assert float(rows["opal.bulk_strength"]["packlab_value"]) == pytest.approx(600.0)
