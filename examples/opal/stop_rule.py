@@ -8,6 +8,9 @@ would have stopped the run had it been run to the end of that curve with `stop_d
   bound          max_strain x the stress per unit strain below stop_drop x peak (no later point
                  can come back above it: the stress per unit strain never rises)
 
+and the peak the run would have reported had it stopped where the past-the-peak rule first holds
+(below the curve's peak where the stress climbs past it again later: a stop_drop too close to 1).
+
 It follows the loop of src/packlab/mechanics/static_compression.cpp: the point after break i lies
 on the network after i break events, and the test after break i compares that network's stress
 per unit strain, at the last break's strain, with the peak of the points up to i.
@@ -51,7 +54,7 @@ def main(argv):
     parser.add_argument("runs", nargs="+")
     args = parser.parse_args(argv[1:])
     columns = ["run", "points", "broken_bonds", "peak_mpa", "peak_break", "strain_at_peak", "last_strain",
-               "last_stress_over_peak", "stop_past_the_peak_break", "stop_bound_break"]
+               "last_stress_over_peak", "stop_past_the_peak_break", "stop_bound_break", "peak_mpa_at_past_stop"]
     table = {c: [] for c in columns}
     for run in args.runs:
         with open(os.path.join(run, "curve.csv")) as f:
@@ -62,7 +65,8 @@ def main(argv):
         peak, at_peak, past, bound = stops(strain, stress, args.stop_drop, args.max_strain)
         values = [os.path.basename(os.path.normpath(run)), len(rows), broken[-1], peak * 1e-6, broken[at_peak],
                   strain[at_peak], strain[-1], stress[-1] / peak,
-                  broken[past] if past is not None else "", broken[bound] if bound is not None else ""]
+                  broken[past] if past is not None else "", broken[bound] if bound is not None else "",
+                  max(stress[:past + 1]) * 1e-6 if past is not None else ""]
         for c, v in zip(columns, values):
             table[c].append(v)
         print(f"{values[0]}: peak {peak * 1e-6:.1f} MPa at break {broken[at_peak]}; past-the-peak rule at break "

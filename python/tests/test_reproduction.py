@@ -347,6 +347,19 @@ def test_stop_rule_finds_where_each_rule_ends_a_curve(tmp_path):
     assert float(row["peak_mpa"]) == pytest.approx(1e-4) and row["peak_break"] == "1"
     assert row["stop_bound_break"] == "3"
     assert row["stop_past_the_peak_break"] == "5"
+    assert float(row["peak_mpa_at_past_stop"]) == pytest.approx(1e-4)
+    # A curve that climbs past its first peak again (a coated opal): with stop_drop 0.95 the
+    # past-the-peak rule holds after the 1st break (0.1 x 90 / 0.11 = 81.8 < 95), before the
+    # curve's peak (120 at the 3rd), so a run stopped there would report 100.
+    points = [(0.0, 0.0), (0.1, 100.0), (0.11, 90.0), (0.12, 120.0), (0.13, 30.0), (0.13, 1.0)]
+    (run / "curve.csv").write_text("step,strain,stress,broken_bonds\n" + "".join(
+        f"{k},{e},{sigma},{k}\n" for k, (e, sigma) in enumerate(points)))
+    subprocess.run([sys.executable, os.path.join(ROOT, "examples", "opal", "stop_rule.py"), "--stop-drop", "0.95",
+                    "--max-strain", "0.2", str(out), str(run)], check=True, capture_output=True)
+    row = reproduction.read_table(str(out))[0]
+    assert float(row["peak_mpa"]) == pytest.approx(1.2e-4) and row["peak_break"] == "3"
+    assert row["stop_past_the_peak_break"] == "1" and row["stop_bound_break"] == "3"
+    assert float(row["peak_mpa_at_past_stop"]) == pytest.approx(1e-4)
 
 
 def test_collect_reads_the_coating_and_bulk_studies(tmp_path):
