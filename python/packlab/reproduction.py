@@ -491,6 +491,13 @@ def opal_porosity_resolution_modulus_values(data):
     return out
 
 
+def _seed_list(seeds):
+    """1-3 for a run of consecutive seeds, else 1, 2, 5."""
+    if len(seeds) > 1 and seeds == list(range(seeds[0], seeds[-1] + 1)):
+        return f"{seeds[0]}-{seeds[-1]}"
+    return ", ".join(str(x) for x in seeds)
+
+
 def opal_structure_values(data):
     """The opal paper's rows of the FCC opal, the bulk and the coating (§2.1, §3, §4) from the
     studies of docs/opal.md: the resolution study (opal_resolution.csv, D/d = 9.2-24.5, three
@@ -624,9 +631,14 @@ def opal_coating_values(data):
             top = [s for s in used if float(s["pore_to_particle_diameter"]) == ratios[-1]]
             top_mean, top_sd = mean_sd([float(s[quantity]) for s in top])
             density = statistics.fmean(float(s["density_kg_m3"]) for s in top)
+            seeds_at = {x: sorted({int(float(s["seed"])) for s in used if float(s["pore_to_particle_diameter"]) == x})
+                        for x in ratios}
+            all_seeds = sorted(set().union(*seeds_at.values()))
             what = (f"FCC opal with {nm} nm of titania scaled with the pores (L_coat = {nm} nm x D / 762 nm), titania "
-                    f"bonds of Table 1, paper's silica bonds, static solver, FBA seeds 1-3 at D/d = "
-                    + ", ".join(f"{x:g}" for x in ratios))
+                    f"bonds of Table 1, paper's silica bonds, static solver, FBA seeds {_seed_list(all_seeds)} at D/d = "
+                    + ", ".join(f"{x:g}" for x in ratios)
+                    + "".join(f" (at {x:g} seeds {_seed_list(seeds_at[x])} only)" for x in ratios
+                              if seeds_at[x] != all_seeds))
             r = estimates.get((nm, quantity))
             if r is not None:
                 out[f"opal.coating{nm}_{name}"] = _ours(

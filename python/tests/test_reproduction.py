@@ -349,16 +349,17 @@ def test_stop_rule_finds_where_each_rule_ends_a_curve(tmp_path):
     assert row["stop_past_the_peak_break"] == "5"
     assert float(row["peak_mpa_at_past_stop"]) == pytest.approx(1e-4)
     # A curve that climbs past its first peak again (a coated opal): with stop_drop 0.95 the
-    # past-the-peak rule holds after the 1st break (0.1 x 90 / 0.11 = 81.8 < 95), before the
-    # curve's peak (120 at the 3rd), so a run stopped there would report 100.
-    points = [(0.0, 0.0), (0.1, 100.0), (0.11, 90.0), (0.12, 120.0), (0.13, 30.0), (0.13, 1.0)]
+    # past-the-peak rule holds after the 2nd break (0.104 x 80 / 0.11 = 75.6 < 95; after the 1st
+    # 0.1 x 99 / 0.104 = 95.2 does not), before the curve's peak (120 at the 4th), so a run
+    # stopped there would report the running peak 100 (not the 99 of its last point).
+    points = [(0.0, 0.0), (0.1, 100.0), (0.104, 99.0), (0.11, 80.0), (0.12, 120.0), (0.13, 30.0), (0.13, 1.0)]
     (run / "curve.csv").write_text("step,strain,stress,broken_bonds\n" + "".join(
         f"{k},{e},{sigma},{k}\n" for k, (e, sigma) in enumerate(points)))
     subprocess.run([sys.executable, os.path.join(ROOT, "examples", "opal", "stop_rule.py"), "--stop-drop", "0.95",
                     "--max-strain", "0.2", str(out), str(run)], check=True, capture_output=True)
     row = reproduction.read_table(str(out))[0]
-    assert float(row["peak_mpa"]) == pytest.approx(1.2e-4) and row["peak_break"] == "3"
-    assert row["stop_past_the_peak_break"] == "1" and row["stop_bound_break"] == "3"
+    assert float(row["peak_mpa"]) == pytest.approx(1.2e-4) and row["peak_break"] == "4"
+    assert row["stop_past_the_peak_break"] == "2" and row["stop_bound_break"] == "4"
     assert float(row["peak_mpa_at_past_stop"]) == pytest.approx(1e-4)
 
 
@@ -378,6 +379,10 @@ def test_collect_reads_the_coating_and_bulk_studies(tmp_path):
             broke = x <= 15
             lines.append(f"20,{seed},{20e-9 * x / 51},{x},{int(100 * x) + seed},{int(20 * x)},{int(900 * x)},0.66,668,"
                          f"{(6 - 20 / x) * 1e9},{(250 - 500 / x) * 1e6 if broke else 1.0},0.06,{100 if broke else 0},1,done")
+    for x, seeds in ((10.0, (1, 2, 3)), (20.0, (1, 2))):  # 10 nm: a seed missing at D/d = 20 (a part study)
+        for seed in seeds:
+            lines.append(f"10,{seed},{10e-9 * x / 51},{x},{int(100 * x)},{int(10 * x)},{int(900 * x)},0.7,500,"
+                         f"{(3 - 10 / x) * 1e9},1.0,0,0,1,done")
     for seed, modulus in ((1, 9.0), (2, 10.0)):  # 34 nm: one D/d only, so no extrapolation
         lines.append(f"34,{seed},{6e-9},10,1000,300,9000,0.6,700,{modulus * 1e9},5e8,0.06,100,1,done")
     (study / "tasks.csv").write_text("\n".join(lines) + "\n")
@@ -415,7 +420,9 @@ def test_collect_reads_the_coating_and_bulk_studies(tmp_path):
     strength = rows["opal.coating20_strength"]
     assert float(strength["packlab_value"]) == pytest.approx(250 - 500 / 51, rel=1e-4)
     assert strength["realizations"] == 4  # no strength above D/d = 15
-    assert rows["opal.coating10_E"]["within"] == "n/a"  # no study rows, and no printed paper value
+    assert rows["opal.coating10_E"]["within"] == "n/a"  # no printed paper value
+    assert "FBA seeds 1-3 at D/d = 10, 20 (at 20 seeds 1-2 only);" in rows["opal.coating10_E"]["note"]
+    assert "FBA seeds 1-2 at D/d = 10, 15, 20, 25;" in e["note"]  # every D/d has every seed
     assert float(rows["opal.coating34_E"]["packlab_value"]) == pytest.approx(9.5)  # the mean at its one D/d
     assert "not extrapolated" in rows["opal.coating34_E"]["note"] and rows["opal.coating34_E"]["within"] == "n/a"
     assert float(rows["opal.K_E"]["packlab_value"]) == pytest.approx(3.3)  # the largest size
