@@ -29,21 +29,22 @@ from packlab.tables import write_table  # noqa: E402
 
 
 def stops(strain, stress, stop_drop, max_strain):
-    """(peak, its point, first point where the past-the-peak rule holds, the same for the bound),
-    points as indices of the curve (None where a rule never holds within it)."""
+    """(peak, its point, first point where the past-the-peak rule holds, the same for the bound,
+    the peak of the points up to the first), points as indices of the curve (None where a rule
+    never holds within it)."""
     peak, at_peak, strain_at_peak = 0.0, 0, 0.0
-    past, bound = None, None
+    past, bound, peak_at_past = None, None, None
     for i in range(1, len(strain) - 1):
         if stress[i] > peak:
             peak, at_peak, strain_at_peak = stress[i], i, strain[i]
         per_strain = stress[i + 1] / strain[i + 1]
         if past is None and strain[i] >= strain_at_peak and strain[i] * per_strain < stop_drop * peak:
-            past = i
+            past, peak_at_past = i, peak
         if bound is None and max_strain * per_strain < stop_drop * peak:
             bound = i
         if past is not None and bound is not None:
             break
-    return peak, at_peak, past, bound
+    return peak, at_peak, past, bound, peak_at_past
 
 
 def main(argv):
@@ -62,11 +63,11 @@ def main(argv):
         strain = [float(r["strain"]) for r in rows]
         stress = [float(r["stress"]) for r in rows]
         broken = [int(float(r["broken_bonds"])) for r in rows]
-        peak, at_peak, past, bound = stops(strain, stress, args.stop_drop, args.max_strain)
+        peak, at_peak, past, bound, peak_at_past = stops(strain, stress, args.stop_drop, args.max_strain)
         values = [os.path.basename(os.path.normpath(run)), len(rows), broken[-1], peak * 1e-6, broken[at_peak],
                   strain[at_peak], strain[-1], stress[-1] / peak,
                   broken[past] if past is not None else "", broken[bound] if bound is not None else "",
-                  max(stress[:past + 1]) * 1e-6 if past is not None else ""]
+                  peak_at_past * 1e-6 if past is not None else ""]
         for c, v in zip(columns, values):
             table[c].append(v)
         print(f"{values[0]}: peak {peak * 1e-6:.1f} MPa at break {broken[at_peak]}; past-the-peak rule at break "
