@@ -48,6 +48,10 @@ void bind_uniaxial_compression(py::module_& m) {
       .def_readonly("bonds", &UniaxialCompressionResult::bonds)
       .def_readonly("fixed_particles", &UniaxialCompressionResult::fixed_particles)
       .def_readonly("max_kinetic_ratio", &UniaxialCompressionResult::max_kinetic_ratio)
+      .def_readonly("rate_switch_strain", &UniaxialCompressionResult::rate_switch_strain,
+                    "Dynamic solver, elastic_speedup > 1: strain where the plate slowed to strain_rate (NaN: never)")
+      .def_readonly("rolled_back_steps", &UniaxialCompressionResult::rolled_back_steps,
+                    "Dynamic solver, elastic_speedup > 1: fast steps run again at strain_rate")
       .def_readonly("stop_reason", &UniaxialCompressionResult::stop_reason)
       .def_readonly("solver", &UniaxialCompressionResult::solver, "dynamic or static")
       .def_readonly("poisson_ratio", &UniaxialCompressionResult::poisson_ratio,
@@ -79,9 +83,10 @@ void bind_uniaxial_compression(py::module_& m) {
             d["bond"] = to_numpy(std::move(bond));
             d["time"] = to_numpy(std::move(time));
             d["position"] = to_numpy(std::move(position));
+            d["strain"] = to_numpy(std::vector<double>(r.break_strain));
             return d;
           },
-          "Bond failures: bond index into model.bonds, time [s], position (midpoint) [m]")
+          "Bond failures: bond index into model.bonds, time [s], position (midpoint) [m], strain at the break")
       .def_property_readonly(
           "snapshots",
           [](const UniaxialCompressionResult& r) {

@@ -60,6 +60,24 @@ def test_glued_plate_gives_the_closed_form_modulus_of_a_simple_cubic_column():
     assert snap["stress_by_type"][0]["mean"][2] < 0
 
 
+def test_elastic_speedup_breaks_no_bond_fast_and_keeps_modulus_and_strength():
+    # The adaptive rate from Python (docs/opal.md, "Adaptive rate"): fast until the first break,
+    # then back to the point before it; every break lies past the switch, fewer steps are run, and
+    # E and the strength are those of the constant-rate run (tolerances of the C++ test).
+    kw = dict(bond_strength=94.3e6, bond_compressive_breakage=True, strain_rate=4e6, max_strain=0.03, samples=200,
+              threads=1)
+    constant = packlab.compression_test(sc_column(6), **kw)
+    adaptive = packlab.compression_test(sc_column(6), elastic_speedup=4, **kw)
+    assert math.isnan(constant.rate_switch_strain) and constant.broken_bonds > 0
+    assert 0 < adaptive.rate_switch_strain < adaptive.breaks["strain"].min()
+    assert adaptive.rolled_back_steps > 0
+    assert adaptive.steps + adaptive.rolled_back_steps < constant.steps
+    assert adaptive.youngs_modulus == pytest.approx(constant.youngs_modulus, rel=2e-3)
+    assert adaptive.strength == pytest.approx(constant.strength, rel=0.05)
+    with pytest.raises(ValueError, match="elastic_speedup"):
+        packlab.compression_test(sc_column(4), elastic_speedup=0.5)
+
+
 def test_bad_keyword_values_raise_value_errors():
     with pytest.raises(ValueError, match="sides"):
         packlab.compression_test(sc_column(4), sides="closed")

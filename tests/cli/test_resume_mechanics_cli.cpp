@@ -107,19 +107,21 @@ std::string bonded_lattice(const TempDir& dir, const std::string& lattice_args, 
   return dir.file("model.vtu");
 }
 
+// The compression tests' specimen: a simple cubic column of breakable silica bonds, 200 curve
+// points over 3 % strain.
+std::string compression_column(const TempDir& dir) {
+  return bonded_lattice(dir, "--type sc --cells 3 3 6 --radius 7.5e-9", "--model elastic --cutoff-ratio 1.75") +
+         " --bond-youngs-modulus 6.53e9 --bond-poisson-ratio 0.17 --bond-strength 94.3e6"
+         " --bond-compressive-breakage --strain-rate 4e6 --max-strain 0.03 --samples 200 --threads 1";
+}
+
 }  // namespace
 
 TEST(ResumeMechanicsCli, TestCompressKilledTwiceAndResumedEqualsUninterruptedRun) {
   TempDir dir("resume-compress");
-  const std::string model =
-      bonded_lattice(dir, "--type sc --cells 3 3 6 --radius 7.5e-9", "--model elastic --cutoff-ratio 1.75");
-  expect_resumed_equals_straight(dir, "test compress",
-                                 model +
-                                     " --bond-youngs-modulus 6.53e9 --bond-poisson-ratio 0.17 --bond-strength 94.3e6"
-                                     " --bond-compressive-breakage --strain-rate 4e6 --max-strain 0.03"
-                                     " --snapshot-strains 0.005,0.02 --snapshot-stresses 100e6,400e6,300e6,1e9"
-                                     " --samples 200 --threads 1",
-                                 60, 70);
+  expect_resumed_equals_straight(
+      dir, "test compress",
+      compression_column(dir) + " --snapshot-strains 0.005,0.02 --snapshot-stresses 100e6,400e6,300e6,1e9", 60, 70);
   // 200 curve points, one checkpoint each, kills after the 60th and 70 more: 100 MPa is reached
   // near point 29, 300 near 88 and 400 near 150 (strains 0.0044, 0.0132, 0.0224 of 0.03), so
   // before, between and after the kills; 1 GPa never: five strain and stress snapshots in the
@@ -133,6 +135,19 @@ TEST(ResumeMechanicsCli, TestCompressKilledTwiceAndResumedEqualsUninterruptedRun
   EXPECT_EQ(report["snapshots"][4].value("requested_stress", 0.0), 400e6);
   EXPECT_GT(report["snapshots"][2]["strain"].get<double>(), 60.0 / 200 * 0.03);   // after the first kill
   EXPECT_GT(report["snapshots"][4]["strain"].get<double>(), 130.0 / 200 * 0.03);  // after the second
+}
+
+// The adaptive rate (--elastic-speedup): killed while the plate still moves fast (point 60 of
+// 200) and again after it slowed down at the first break (strain 0.0144, near point 96), resumed
+// to the end, the run equals the uninterrupted one bit for bit.
+TEST(ResumeMechanicsCli, AdaptiveRateCompressKilledInBothPhasesAndResumedEqualsUninterruptedRun) {
+  TempDir dir("resume-compress-adaptive");
+  expect_resumed_equals_straight(dir, "test compress", compression_column(dir) + " --elastic-speedup 4", 60, 70);
+  const auto report = nlohmann::json::parse(read_bytes(dir.path() / "straight" / "report.json"));
+  const double switch_strain = report["adaptive_rate"]["switch_strain"].get<double>();
+  EXPECT_GT(switch_strain, 60.0 / 200 * 0.03);   // after the first kill
+  EXPECT_LT(switch_strain, 130.0 / 200 * 0.03);  // before the second
+  EXPECT_GT(report["adaptive_rate"]["rolled_back_steps"].get<long>(), 0);
 }
 
 TEST(ResumeMechanicsCli, TestShearKilledTwiceAndResumedEqualsUninterruptedRun) {

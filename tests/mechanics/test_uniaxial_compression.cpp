@@ -31,6 +31,18 @@ UniaxialCompressionOptions options(double strength = inf) { return test::silica_
 // Simple cubic column, 3 x 3 cells across (periodic), `layers` levels, elastic bonds 1.75 d.
 Packing sc_column(int layers) { return test::bonded_lattice(generate::LatticeType::sc, {3, 3, layers}, r, 1.75); }
 
+// The test set-up of a pore-free force-biased packing (porosity 0.38, the paper's bulk sample;
+// 400 particles, periodic x, y), elastic bonds 1.75 d, breakable silica bonds, at the automatic
+// rate (1e-4 strain per elastic-wave transit, the command line's default) to 5 % strain.
+UniaxialCompressionSetup bulk_sample_setup(const Packing& sample) {
+  UniaxialCompressionSetup setup;
+  setup.options.threads = 1;
+  setup.options.max_strain = 0.05;
+  setup.options.samples = 300;
+  setup.finish(sample);
+  return setup;
+}
+
 }  // namespace
 
 // Periodic sides keep every level of a simple cubic column a rigid plane: the column is a chain
@@ -101,16 +113,10 @@ TEST(UniaxialCompression, ContactPlateAddsTheHertzCompliance) {
 }
 
 TEST(UniaxialCompression, HalvingTheStrainRateChangesNeitherModulusNorStrength) {
-  // A pore-free force-biased packing (porosity 0.38, the paper's bulk sample; 400 particles,
-  // periodic x, y), elastic bonds 1.75 d, breakable silica bonds, compressed past its peak at the
-  // automatic rate (1e-4 strain per elastic-wave transit, the command line's default) and at
-  // half that: E within 0.2 %, strength within 5 %.
+  // The bulk sample compressed past its peak at the automatic rate and at half that: E within
+  // 0.2 %, strength within 5 %.
   const Packing p = test::random_bonded_sample(400, 3, r);
-  UniaxialCompressionSetup setup;
-  setup.options.threads = 1;
-  setup.options.max_strain = 0.05;
-  setup.options.samples = 300;
-  setup.finish(p);
+  UniaxialCompressionSetup setup = bulk_sample_setup(p);
   const double rate = setup.options.strain_rate;
   const UniaxialCompressionResult fast = run_uniaxial_compression(p, setup.options);
   setup.options.strain_rate = 0.5 * rate;
@@ -119,6 +125,55 @@ TEST(UniaxialCompression, HalvingTheStrainRateChangesNeitherModulusNorStrength) 
   ASSERT_TRUE(fast.modulus.found && slow.modulus.found);
   EXPECT_NEAR(fast.youngs_modulus, slow.youngs_modulus, 2e-3 * slow.youngs_modulus);
   EXPECT_NEAR(fast.strength, slow.strength, 0.05 * slow.strength);
+}
+
+// The adaptive rate (elastic_speedup, issue #14): the plate moves fast until the first bond
+// breaks, then the run goes back to the point before that break and on at the automatic rate.
+// On the bulk sample: no bond breaks at the fast rate (every break's strain lies past the
+// switch), the curve keeps its strain spacing across the switch, fewer steps are run, and E and
+// the strength are those of the constant-rate run within the tolerances of the halving test.
+TEST(UniaxialCompression, ElasticSpeedupBreaksNoBondFastAndKeepsModulusAndStrength) {
+  const Packing p = test::random_bonded_sample(400, 3, r);
+  UniaxialCompressionSetup setup = bulk_sample_setup(p);
+  const UniaxialCompressionResult constant = run_uniaxial_compression(p, setup.options);
+  setup.options.elastic_speedup = 4.0;
+  const UniaxialCompressionResult adaptive = run_uniaxial_compression(p, setup.options);
+  ASSERT_GT(constant.broken_bonds, 0u);
+  ASSERT_GT(adaptive.broken_bonds, 0u);
+  ASSERT_TRUE(std::isfinite(adaptive.rate_switch_strain));
+  EXPECT_GT(adaptive.rolled_back_steps, 0);
+  for (double strain : adaptive.break_strain) EXPECT_GE(strain, adaptive.rate_switch_strain);
+  // The plate speeds up smoothly (the points' strain spacing grows), then the points are equally
+  // spaced in strain. The plate slows down right after one of them (a point is the state at the
+  // start of its measured step, which still runs fast): the gap after it is one fast step longer
+  // (a few % of the spacing). The last point may end a shorter step, at max_strain.
+  const std::vector<UniaxialCompressionPoint>& c = adaptive.curve;
+  const double spacing = c[c.size() / 2].strain - c[c.size() / 2 - 1].strain;
+  bool ramped = false, switch_is_a_point = false;
+  for (std::size_t k = 1; k + 1 < c.size(); ++k) {
+    const double gap = c[k].strain - c[k - 1].strain;
+    const bool after_switch =
+        c[k - 1].strain < adaptive.rate_switch_strain && adaptive.rate_switch_strain < c[k - 1].strain + 0.1 * spacing;
+    switch_is_a_point |= after_switch;
+    if (after_switch) {
+      EXPECT_GT(gap, spacing) << k;
+      EXPECT_LT(gap, 1.1 * spacing) << k;
+    } else if (ramped) {
+      EXPECT_NEAR(gap, spacing, 1e-9 * spacing) << k;
+    } else {
+      EXPECT_LT(gap, spacing * (1 + 1e-9)) << k;
+      if (k > 1) {
+        EXPECT_GT(gap, c[k - 1].strain - c[k - 2].strain) << k;
+      }
+      ramped = gap > spacing * (1 - 1e-9);
+    }
+  }
+  EXPECT_TRUE(ramped);
+  EXPECT_TRUE(switch_is_a_point);
+  EXPECT_LT(adaptive.steps + adaptive.rolled_back_steps, constant.steps);
+  ASSERT_TRUE(constant.modulus.found && adaptive.modulus.found);
+  EXPECT_NEAR(adaptive.youngs_modulus, constant.youngs_modulus, 2e-3 * constant.youngs_modulus);
+  EXPECT_NEAR(adaptive.strength, constant.strength, 0.05 * constant.strength);
 }
 
 // A snapshot requested at an applied stress is taken at the first curve point at or above it,
@@ -152,6 +207,9 @@ TEST(UniaxialCompression, BadOptionsAreInputErrors) {
   EXPECT_THROW(run_uniaxial_compression(column, o), InputError);
   o = options();
   o.strain_rate = -1;
+  EXPECT_THROW(run_uniaxial_compression(column, o), InputError);
+  o = options();
+  o.elastic_speedup = 0.5;
   EXPECT_THROW(run_uniaxial_compression(column, o), InputError);
   o = options();
   o.snapshot_stresses = {-1e6};

@@ -91,6 +91,13 @@ void add_test_compress(CLI::App& test) {
           } else {
             fmt::print("strain rate {:.4g} 1/s, time step {:.4g} s, {} steps; {}\n", s.options.strain_rate, r.time_step,
                        r.steps, r.stop_reason);
+            if (s.options.elastic_speedup > 1.0)
+              fmt::print(
+                  "adaptive rate: {:g}x until strain {} (the point before the first break), {} steps run again\n",
+                  s.options.elastic_speedup,
+                  std::isfinite(r.rate_switch_strain) ? fmt::format("{:.4g}", r.rate_switch_strain)
+                                                      : std::string("- (no break)"),
+                  r.rolled_back_steps);
             fmt::print(
                 "Young's modulus {:.5g} GPa (fit over strain {:.4g}..{:.4g}), strength {:.5g} MPa at strain {:.4g}, "
                 "{} broken bonds\n",

@@ -7,6 +7,9 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <numbers>
+#include <sstream>
+#include <string>
 
 #include "packlab/core/binary_io.hpp"
 #include "packlab/core/error.hpp"
@@ -35,9 +38,20 @@ Columns curve_columns(const std::vector<UniaxialCompressionPoint>& curve) {
 
 namespace {
 
+// The adaptive rate's phase (options.elastic_speedup > 1): whether the plate still moves fast,
+// and where it slowed down (step, time since the start of the test, plate displacement).
+struct RatePhase {
+  bool fast = false;
+  double displacement = 0.0;  // [m] of the plate in the fast phase
+  long switch_step = 0;
+  double switch_time = 0.0;          // [s]
+  double switch_displacement = 0.0;  // [m]
+};
+
 // The state written by run_uniaxial_compression's `save` (options.checkpoint).
+
 void load_compression_state(std::istream& in, dem::Engine& engine, bool& stopped, double& peak,
-                            UniaxialCompressionResult& result) {
+                            UniaxialCompressionResult& result, RatePhase* phase) {
   engine.load_state(in);
   std::uint8_t stop = 0;
   binary::read(in, stop, "stop flag");
@@ -48,6 +62,17 @@ void load_compression_state(std::istream& in, dem::Engine& engine, bool& stopped
   if (stop > 1) fail_input("checkpoint is damaged: compression state");
   stopped = stop == 1;
   read_compression_snapshots(in, result.snapshots);
+  if (phase != nullptr) {  // written only with elastic_speedup > 1: older checkpoints still load
+    std::uint8_t fast = 0;
+    binary::read(in, fast, "rate phase");
+    if (fast > 1) fail_input("checkpoint is damaged: rate phase");
+    phase->fast = fast == 1;
+    binary::read(in, phase->displacement, "plate displacement");
+    binary::read(in, phase->switch_step, "rate switch step");
+    binary::read(in, phase->switch_time, "rate switch time");
+    binary::read(in, phase->switch_displacement, "rate switch displacement");
+    binary::read(in, result.rolled_back_steps, "rolled back steps");
+  }
 }
 
 }  // namespace
@@ -145,11 +170,13 @@ UniaxialCompressionResult run_uniaxial_compression(const Packing& bonded_model,
   std::vector<std::size_t> grip_internal;
   if (glued) {
     for (std::size_t k = 0; k < n; ++k)
-      if (grip[static_cast<std::size_t>(engine.original_index()[k])]) {
-        grip_internal.push_back(k);
-        engine.particles().velocity[k] = Vec3{0.0, 0.0, -result.plate_speed};
-      }
+      if (grip[static_cast<std::size_t>(engine.original_index()[k])]) grip_internal.push_back(k);
   }
+  const auto set_plate_speed = [&](double speed) {
+    engine.wall(plate).velocity = Vec3{0.0, 0.0, -speed};
+    for (std::size_t k : grip_internal) engine.particles().velocity[k] = Vec3{0.0, 0.0, -speed};
+  };
+  set_plate_speed(result.plate_speed);
   auto plate_force = [&] {
     if (!glued) return engine.wall_force(plate).z;
     double f = 0.0;
@@ -160,6 +187,31 @@ UniaxialCompressionResult run_uniaxial_compression(const Packing& bonded_model,
   const double total_time = options.max_strain / options.strain_rate;
   const auto total_steps = static_cast<long>(std::ceil(total_time / dt));
   const long interval = std::max(1L, total_steps / options.samples);
+  // The adaptive rate: elastic_speedup x the speed with the points at the same strain spacing.
+  const bool adaptive = options.elastic_speedup > 1.0;
+  const long fast_interval =
+      std::max(1L, static_cast<long>(std::lround(static_cast<double>(interval) / options.elastic_speedup)));
+  const double fast_speed = result.plate_speed * static_cast<double>(interval) / static_cast<double>(fast_interval);
+  // The fast plate starts smoothly: its speed rises as a half cosine over start_ramp_transits
+  // times the time an elastic wave of the stiffest bond material in the densest particles needs
+  // to cross the sample (a column's fundamental mode lasts about two such transits). Started at
+  // once, the fast plate would set that mode ringing with elastic_speedup times the amplitude of
+  // the constant-rate run's own start (docs/opal.md, "Adaptive rate").
+  constexpr double start_ramp_transits = 4.0;
+  double slowest_wave = 0.0;  // sqrt(density / E) [s/m]
+  for (const dem::Material& t : options.types)
+    for (const dem::ElasticBond::Params& b : options.bond_materials)
+      slowest_wave = std::max(slowest_wave, std::sqrt(t.density / b.youngs_modulus));
+  const auto ramp_steps =
+      adaptive ? static_cast<long>(std::ceil(start_ramp_transits * result.height * slowest_wave / dt)) : 0L;
+  const auto fast_phase_speed = [&](long step) {
+    if (step >= ramp_steps) return fast_speed;
+    return fast_speed * 0.5 *
+           (1.0 - std::cos(std::numbers::pi * (static_cast<double>(step) + 0.5) / static_cast<double>(ramp_steps)));
+  };
+  const double max_displacement = options.max_strain * result.height;
+  RatePhase phase;
+  phase.fast = adaptive;
   PendingSnapshots pending(options);
   double peak = 0.0;
   result.stop_reason = "reached max_strain";
@@ -173,18 +225,88 @@ UniaxialCompressionResult run_uniaxial_compression(const Packing& bonded_model,
     binary::write(out, result.strain_at_peak);
     binary::write_vector(out, result.curve);
     write_compression_snapshots(out, result.snapshots);
+    if (adaptive) {
+      binary::write(out, static_cast<std::uint8_t>(phase.fast));
+      binary::write(out, phase.displacement);
+      binary::write(out, phase.switch_step);
+      binary::write(out, phase.switch_time);
+      binary::write(out, phase.switch_displacement);
+      binary::write(out, result.rolled_back_steps);
+    }
   };
-  if (options.resume != nullptr) load_compression_state(*options.resume, engine, stopped, peak, result);
+  if (options.resume != nullptr)
+    load_compression_state(*options.resume, engine, stopped, peak, result, adaptive ? &phase : nullptr);
   pending.resume(result.snapshots);
-  while (!stopped && engine.step_count() < total_steps) {
-    const long remaining = total_steps - engine.step_count();
-    const long chunk = std::min(interval, remaining);
-    if (chunk > 1) engine.run(chunk - 1);
+  set_plate_speed(phase.fast ? fast_phase_speed(engine.step_count()) : result.plate_speed);
+  // The fast phase keeps the state of its last curve point to go back to when a bond breaks.
+  std::string rollback_state;
+  std::size_t rollback_points = 0, rollback_snapshots = 0;
+  double rollback_peak = 0.0, rollback_strain_at_peak = 0.0, rollback_displacement = 0.0;
+  while (!stopped) {
+    long chunk = 0;
+    if (phase.fast) {
+      if (phase.displacement >= max_displacement) break;
+      chunk = fast_interval;
+      std::ostringstream out;
+      engine.save_state(out);
+      rollback_state = std::move(out).str();
+      rollback_points = result.curve.size();
+      rollback_snapshots = result.snapshots.size();
+      rollback_peak = peak;
+      rollback_strain_at_peak = result.strain_at_peak;
+      rollback_displacement = phase.displacement;
+    } else {
+      // At strain_rate from the switch on (from the start without the adaptive rate: the same
+      // steps as a constant-rate run).
+      const long end_step =
+          phase.switch_step +
+          static_cast<long>(std::ceil((total_time - phase.switch_displacement / result.plate_speed) / dt));
+      if (engine.step_count() >= end_step) break;
+      chunk = std::min(interval, end_step - engine.step_count());
+    }
+    if (phase.fast) {
+      // Step by step while the plate speeds up, then at fast_speed.
+      for (long k = 0; k < chunk; ++k) {
+        const long step = engine.step_count();
+        if (step >= ramp_steps) {
+          set_plate_speed(fast_speed);
+          phase.displacement += fast_speed * dt * static_cast<double>(chunk - k);
+          if (chunk - k > 1) engine.run(chunk - k - 1);
+          break;
+        }
+        const double speed = fast_phase_speed(step);
+        set_plate_speed(speed);
+        phase.displacement += speed * dt;
+        if (k + 1 < chunk) engine.run(1);
+      }
+      set_plate_speed(fast_phase_speed(engine.step_count()));
+    } else if (chunk > 1) {
+      engine.run(chunk - 1);
+    }
     const dem::Diagnostics d = engine.step_measured();
+    if (phase.fast && d.broken_bonds > 0) {
+      // A bond broke at the fast rate: back to the last point, slowly from there.
+      result.rolled_back_steps += chunk;
+      std::istringstream in(rollback_state);
+      engine.load_state(in);
+      result.curve.resize(rollback_points);
+      result.snapshots.resize(rollback_snapshots);
+      pending.resume(result.snapshots);
+      peak = rollback_peak;
+      result.strain_at_peak = rollback_strain_at_peak;
+      phase.fast = false;
+      phase.switch_step = engine.step_count();
+      phase.switch_time = engine.time() - t_start;
+      phase.switch_displacement = phase.displacement = rollback_displacement;
+      set_plate_speed(result.plate_speed);
+      continue;
+    }
     UniaxialCompressionPoint p;
     p.step = d.step;
     p.time = d.time - t_start;
-    p.displacement = result.plate_speed * p.time;
+    // The point is the state at the start of the measured step (d.time), as at a constant rate.
+    p.displacement = phase.fast ? phase.displacement - fast_phase_speed(d.step) * dt
+                                : phase.switch_displacement + result.plate_speed * (p.time - phase.switch_time);
     p.strain = p.displacement / result.height;
     p.force = plate_force();
     p.stress = p.force / result.area;
@@ -227,8 +349,10 @@ UniaxialCompressionResult run_uniaxial_compression(const Packing& bonded_model,
     if (p.stress > 0.2 * peak && p.strain <= result.strain_at_peak && p.strain_energy > 0.0)
       result.max_kinetic_ratio = std::max(result.max_kinetic_ratio, p.kinetic_energy / p.strain_energy);
   result.breaks = engine.bond_breaks();
-  for (const auto& b : result.breaks)
-    result.break_strain.push_back(result.plate_speed * (b.time - t_start) / result.height);
+  if (adaptive && !phase.fast) result.rate_switch_strain = phase.switch_displacement / result.height;
+  for (const auto& b : result.breaks)  // every break comes after the switch to strain_rate
+    result.break_strain.push_back(
+        (phase.switch_displacement + result.plate_speed * (b.time - t_start - phase.switch_time)) / result.height);
   result.broken_bonds = result.breaks.size();
   result.model = engine.packing();  // fixed = substrate and glued plate layers
   result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
