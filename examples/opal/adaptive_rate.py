@@ -17,6 +17,7 @@ needed: resource.getrusage of the child), with `workers` runs side by side on th
 
 import argparse
 import json
+import math
 import os
 import subprocess
 import sys
@@ -98,11 +99,19 @@ def main(argv=None):
     table = {k: [] for k in ("sample", "elastic_speedup", "youngs_modulus_gpa", "strength_mpa", "strain_at_peak",
                              "steps", "rolled_back_steps", "switch_strain", "broken_bonds",
                              "max_kinetic_to_strain_energy", "cpu_seconds", "modulus_change_percent",
-                             "strength_change_percent", "steps_ratio")}
+                             "strength_change_percent", "steps_ratio", "effective_speedup",
+                             "constant_rate_steps_to_switch")}
     base = {}
+    strain_per_step, interval = {}, {}  # of the constant-rate run, from its curve (points' step, strain)
     for (name, s, label, _), (report, cpu) in zip(jobs, results):
         if s == 1.0 and label is None:
             base[name] = report
+            with open(os.path.join(args.out, f"{name}-x1", "curve.csv")) as f:
+                rows = [line.split(",") for line in f if not line.startswith("#")]
+            col = {key: k for k, key in enumerate(rows[0])}
+            first, second = rows[2], rows[3]
+            interval[name] = int(second[col["step"]]) - int(first[col["step"]])
+            strain_per_step[name] = (float(second[col["strain"]]) - float(first[col["strain"]])) / interval[name]
         ref = base[name]
         adaptive = report.get("adaptive_rate") or {}
         steps = report["steps"] + adaptive.get("rolled_back_steps", 0)
@@ -121,6 +130,12 @@ def main(argv=None):
         table["modulus_change_percent"].append(100.0 * (report["youngs_modulus"] / ref["youngs_modulus"] - 1.0))
         table["strength_change_percent"].append(100.0 * (report["strength"] / ref["strength"] - 1.0))
         table["steps_ratio"].append(ref["steps"] / steps)
+        # interval / fast interval, as the test computes it (std::lround: halves away from zero)
+        table["effective_speedup"].append(
+            interval[name] / max(1, math.floor(interval[name] / s + 0.5)) if adaptive else 1.0)
+        # Where the switch lies in the constant-rate run: the steps that the fast phase replaces.
+        table["constant_rate_steps_to_switch"].append(
+            float("nan") if switch is None else round(switch / strain_per_step[name]))
         print(f"{label or name} x{s:g}: E {report['youngs_modulus'] * 1e-9:.4f} GPa "
               f"({table['modulus_change_percent'][-1]:+.2f} %), strength {report['strength'] * 1e-6:.3f} MPa "
               f"({table['strength_change_percent'][-1]:+.2f} %), {steps} steps ({table['steps_ratio'][-1]:.2f}x "

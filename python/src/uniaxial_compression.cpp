@@ -51,7 +51,9 @@ void bind_uniaxial_compression(py::module_& m) {
       .def_readonly("rate_switch_strain", &UniaxialCompressionResult::rate_switch_strain,
                     "Dynamic solver, elastic_speedup > 1: strain where the plate slowed to strain_rate (NaN: never)")
       .def_readonly("rolled_back_steps", &UniaxialCompressionResult::rolled_back_steps,
-                    "Dynamic solver, elastic_speedup > 1: fast steps run again at strain_rate")
+                    "Dynamic solver, elastic_speedup > 1: fast steps discarded at the first break")
+      .def_readonly("effective_speedup", &UniaxialCompressionResult::effective_speedup,
+                    "Dynamic solver: the speed-up run (elastic_speedup rounded to keep the points' spacing; 1 = none)")
       .def_readonly("stop_reason", &UniaxialCompressionResult::stop_reason)
       .def_readonly("solver", &UniaxialCompressionResult::solver, "dynamic or static")
       .def_readonly("poisson_ratio", &UniaxialCompressionResult::poisson_ratio,

@@ -142,6 +142,7 @@ TEST(UniaxialCompression, ElasticSpeedupBreaksNoBondFastAndKeepsModulusAndStreng
   ASSERT_GT(adaptive.broken_bonds, 0u);
   ASSERT_TRUE(std::isfinite(adaptive.rate_switch_strain));
   EXPECT_GT(adaptive.rolled_back_steps, 0);
+  EXPECT_NEAR(adaptive.effective_speedup, 4.0, 0.1);
   for (double strain : adaptive.break_strain) EXPECT_GE(strain, adaptive.rate_switch_strain);
   // The plate speeds up smoothly (the points' strain spacing grows), then the points are equally
   // spaced in strain. The plate slows down right after one of them (a point is the state at the
@@ -210,6 +211,10 @@ TEST(UniaxialCompression, BadOptionsAreInputErrors) {
   EXPECT_THROW(run_uniaxial_compression(column, o), InputError);
   o = options();
   o.elastic_speedup = 0.5;
+  EXPECT_THROW(run_uniaxial_compression(column, o), InputError);
+  o = options();
+  o.elastic_speedup = 4.0;
+  o.solver = "static";
   EXPECT_THROW(run_uniaxial_compression(column, o), InputError);
   o = options();
   o.snapshot_stresses = {-1e6};

@@ -93,8 +93,9 @@ void add_test_compress(CLI::App& test) {
                        r.steps, r.stop_reason);
             if (s.options.elastic_speedup > 1.0)
               fmt::print(
-                  "adaptive rate: {:g}x until strain {} (the point before the first break), {} steps run again\n",
-                  s.options.elastic_speedup,
+                  "adaptive rate: {:.3g}x until strain {} (after the last point before the first break), {} fast "
+                  "steps discarded\n",
+                  r.effective_speedup,
                   std::isfinite(r.rate_switch_strain) ? fmt::format("{:.4g}", r.rate_switch_strain)
                                                       : std::string("- (no break)"),
                   r.rolled_back_steps);

@@ -98,6 +98,7 @@ nlohmann::json uniaxial_compression_summary(const mechanics::UniaxialCompression
   j["strain_rate"] = o.strain_rate;
   if (r.solver == "dynamic" && o.elastic_speedup > 1.0)
     j["adaptive_rate"] = {{"elastic_speedup", o.elastic_speedup},
+                          {"effective_speedup", r.effective_speedup},
                           {"switch_strain", std::isfinite(r.rate_switch_strain) ? nlohmann::json(r.rate_switch_strain)
                                                                                 : nlohmann::json()},
                           {"rolled_back_steps", r.rolled_back_steps}};

@@ -42,14 +42,13 @@ namespace {
 // and where it slowed down (step, time since the start of the test, plate displacement).
 struct RatePhase {
   bool fast = false;
-  double displacement = 0.0;  // [m] of the plate in the fast phase
+  double displacement = 0.0;  // [m] of the plate at the end of the last fast step run
   long switch_step = 0;
   double switch_time = 0.0;          // [s]
   double switch_displacement = 0.0;  // [m]
 };
 
 // The state written by run_uniaxial_compression's `save` (options.checkpoint).
-
 void load_compression_state(std::istream& in, dem::Engine& engine, bool& stopped, double& peak,
                             UniaxialCompressionResult& result, RatePhase* phase) {
   engine.load_state(in);
@@ -187,23 +186,25 @@ UniaxialCompressionResult run_uniaxial_compression(const Packing& bonded_model,
   const double total_time = options.max_strain / options.strain_rate;
   const auto total_steps = static_cast<long>(std::ceil(total_time / dt));
   const long interval = std::max(1L, total_steps / options.samples);
-  // The adaptive rate: elastic_speedup x the speed with the points at the same strain spacing.
-  const bool adaptive = options.elastic_speedup > 1.0;
+  // The adaptive rate: about elastic_speedup x the speed (exactly interval / fast_interval, so
+  // that the points keep their strain spacing); none where the points are too close for it.
   const long fast_interval =
       std::max(1L, static_cast<long>(std::lround(static_cast<double>(interval) / options.elastic_speedup)));
+  const bool adaptive = options.elastic_speedup > 1.0 && fast_interval < interval;
   const double fast_speed = result.plate_speed * static_cast<double>(interval) / static_cast<double>(fast_interval);
+  if (adaptive) result.effective_speedup = static_cast<double>(interval) / static_cast<double>(fast_interval);
   // The fast plate starts smoothly: its speed rises as a half cosine over start_ramp_transits
-  // times the time an elastic wave of the stiffest bond material in the densest particles needs
-  // to cross the sample (a column's fundamental mode lasts about two such transits). Started at
-  // once, the fast plate would set that mode ringing with elastic_speedup times the amplitude of
-  // the constant-rate run's own start (docs/opal.md, "Adaptive rate").
+  // times the time an elastic wave needs to cross the sample, taken at its slowest (the densest
+  // particles with the softest bonds; a column's fundamental mode lasts about two transits).
+  // Started at once, the fast plate would set that mode ringing with elastic_speedup times the
+  // amplitude of the constant-rate run's own start (docs/opal.md, "Adaptive rate").
   constexpr double start_ramp_transits = 4.0;
-  double slowest_wave = 0.0;  // sqrt(density / E) [s/m]
+  double max_slowness = 0.0;  // 1 / wave speed = sqrt(density / E) [s/m]
   for (const dem::Material& t : options.types)
     for (const dem::ElasticBond::Params& b : options.bond_materials)
-      slowest_wave = std::max(slowest_wave, std::sqrt(t.density / b.youngs_modulus));
+      max_slowness = std::max(max_slowness, std::sqrt(t.density / b.youngs_modulus));
   const auto ramp_steps =
-      adaptive ? static_cast<long>(std::ceil(start_ramp_transits * result.height * slowest_wave / dt)) : 0L;
+      adaptive ? static_cast<long>(std::ceil(start_ramp_transits * result.height * max_slowness / dt)) : 0L;
   const auto fast_phase_speed = [&](long step) {
     if (step >= ramp_steps) return fast_speed;
     return fast_speed * 0.5 *
@@ -238,22 +239,21 @@ UniaxialCompressionResult run_uniaxial_compression(const Packing& bonded_model,
     load_compression_state(*options.resume, engine, stopped, peak, result, adaptive ? &phase : nullptr);
   pending.resume(result.snapshots);
   set_plate_speed(phase.fast ? fast_phase_speed(engine.step_count()) : result.plate_speed);
-  // The fast phase keeps the state of its last curve point to go back to when a bond breaks.
+  // The fast phase keeps the state after its last curve point to go back to when a bond breaks
+  // (the curve, peak and snapshots of the discarded steps are not recorded yet: the break is
+  // found before the point is).
   std::string rollback_state;
-  std::size_t rollback_points = 0, rollback_snapshots = 0;
-  double rollback_peak = 0.0, rollback_strain_at_peak = 0.0, rollback_displacement = 0.0;
+  double rollback_displacement = 0.0;
   while (!stopped) {
     long chunk = 0;
     if (phase.fast) {
       if (phase.displacement >= max_displacement) break;
-      chunk = fast_interval;
+      // The last chunk ends at max_strain (at fast_speed; shorter during the ramp, then one more).
+      chunk = std::clamp(static_cast<long>(std::ceil((max_displacement - phase.displacement) / (fast_speed * dt))), 1L,
+                         fast_interval);
       std::ostringstream out;
       engine.save_state(out);
       rollback_state = std::move(out).str();
-      rollback_points = result.curve.size();
-      rollback_snapshots = result.snapshots.size();
-      rollback_peak = peak;
-      rollback_strain_at_peak = result.strain_at_peak;
       rollback_displacement = phase.displacement;
     } else {
       // At strain_rate from the switch on (from the start without the adaptive rate: the same
@@ -279,21 +279,16 @@ UniaxialCompressionResult run_uniaxial_compression(const Packing& bonded_model,
         phase.displacement += speed * dt;
         if (k + 1 < chunk) engine.run(1);
       }
-      set_plate_speed(fast_phase_speed(engine.step_count()));
     } else if (chunk > 1) {
       engine.run(chunk - 1);
     }
     const dem::Diagnostics d = engine.step_measured();
     if (phase.fast && d.broken_bonds > 0) {
-      // A bond broke at the fast rate: back to the last point, slowly from there.
+      // A bond broke at the fast rate: back to the last point, slowly from there. (The plate slows
+      // from fast_speed in one step while the sample keeps the fast run's velocities: docs/opal.md.)
       result.rolled_back_steps += chunk;
       std::istringstream in(rollback_state);
       engine.load_state(in);
-      result.curve.resize(rollback_points);
-      result.snapshots.resize(rollback_snapshots);
-      pending.resume(result.snapshots);
-      peak = rollback_peak;
-      result.strain_at_peak = rollback_strain_at_peak;
       phase.fast = false;
       phase.switch_step = engine.step_count();
       phase.switch_time = engine.time() - t_start;

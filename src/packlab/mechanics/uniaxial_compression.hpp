@@ -151,8 +151,11 @@ struct UniaxialCompressionResult {
   double height = 0.0;       // H0 [m]
   double area = 0.0;         // A [m^2]
   double plate_speed = 0.0;  // [m/s] at strain_rate
-  // Dynamic solver with elastic_speedup > 1: where the plate slowed to strain_rate (the curve
-  // point before the first break; NaN when no bond broke) and the fast steps run again from there.
+  // Dynamic solver with elastic_speedup > 1: the speed-up run (interval / fast interval of the
+  // curve points: elastic_speedup rounded so that the points keep their spacing; 1 = none), the
+  // strain where the plate slowed to strain_rate (one fast step after the last curve point before
+  // the first break; NaN when no bond broke) and the fast steps discarded at that break.
+  double effective_speedup = 1.0;
   double rate_switch_strain = std::numeric_limits<double>::quiet_NaN();
   long rolled_back_steps = 0;
   double time_step = 0.0;  // [s]

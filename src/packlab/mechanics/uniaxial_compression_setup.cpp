@@ -56,6 +56,11 @@ void UniaxialCompressionOptions::validate() const {
     fail_input(fmt::format("plate = {}: must be 'glued' or 'contact'", plate));
   if (solver != "dynamic" && solver != "static")
     fail_input(fmt::format("solver = {}: must be 'dynamic' or 'static'", solver));
+  if (solver == "static" && elastic_speedup > 1.0)
+    fail_input(
+        fmt::format("elastic_speedup = {:g} with solver = static: the adaptive rate is the dynamic solver's (the "
+                    "static one has no rate)",
+                    elastic_speedup));
   if (solver == "static" && plate != "glued")
     fail_input(
         "plate = contact with solver = static: the static solver needs the glued plate (a contact plate "
