@@ -26,7 +26,7 @@ from concurrent.futures import ThreadPoolExecutor
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, os.path.join(HERE, "..", "..", "python"))
-from packlab.tables import write_table  # noqa: E402
+from packlab.tables import read_table, write_table  # noqa: E402
 
 CONFIG = os.path.join(HERE, "silica.toml")
 SAMPLES = {
@@ -106,12 +106,9 @@ def main(argv=None):
     for (name, s, label, _), (report, cpu) in zip(jobs, results):
         if s == 1.0 and label is None:
             base[name] = report
-            with open(os.path.join(args.out, f"{name}-x1", "curve.csv")) as f:
-                rows = [line.split(",") for line in f if not line.startswith("#")]
-            col = {key: k for k, key in enumerate(rows[0])}
-            first, second = rows[2], rows[3]
-            interval[name] = int(second[col["step"]]) - int(first[col["step"]])
-            strain_per_step[name] = (float(second[col["strain"]]) - float(first[col["strain"]])) / interval[name]
+            curve = read_table(os.path.join(args.out, f"{name}-x1", "curve.csv"))
+            interval[name] = int(curve["step"][2] - curve["step"][1])
+            strain_per_step[name] = (curve["strain"][2] - curve["strain"][1]) / interval[name]
         ref = base[name]
         adaptive = report.get("adaptive_rate") or {}
         steps = report["steps"] + adaptive.get("rolled_back_steps", 0)

@@ -39,13 +39,13 @@ Columns curve_columns(const std::vector<UniaxialCompressionPoint>& curve) {
 namespace {
 
 // The adaptive rate's phase (options.elastic_speedup > 1): whether the plate still moves fast,
-// and where it slowed down (step, time since the start of the test, plate displacement).
+// the plate's displacement at the end of the last fast step (from the switch on: at the switch,
+// where the constant rate takes over), and the switch's step and time since the start of the test.
 struct RatePhase {
   bool fast = false;
-  double displacement = 0.0;  // [m] of the plate at the end of the last fast step run
+  double displacement = 0.0;  // [m]
   long switch_step = 0;
-  double switch_time = 0.0;          // [s]
-  double switch_displacement = 0.0;  // [m]
+  double switch_time = 0.0;  // [s]
 };
 
 // The state written by run_uniaxial_compression's `save` (options.checkpoint).
@@ -69,7 +69,6 @@ void load_compression_state(std::istream& in, dem::Engine& engine, bool& stopped
     binary::read(in, phase->displacement, "plate displacement");
     binary::read(in, phase->switch_step, "rate switch step");
     binary::read(in, phase->switch_time, "rate switch time");
-    binary::read(in, phase->switch_displacement, "rate switch displacement");
     binary::read(in, result.rolled_back_steps, "rolled back steps");
   }
 }
@@ -231,7 +230,6 @@ UniaxialCompressionResult run_uniaxial_compression(const Packing& bonded_model,
       binary::write(out, phase.displacement);
       binary::write(out, phase.switch_step);
       binary::write(out, phase.switch_time);
-      binary::write(out, phase.switch_displacement);
       binary::write(out, result.rolled_back_steps);
     }
   };
@@ -255,16 +253,6 @@ UniaxialCompressionResult run_uniaxial_compression(const Packing& bonded_model,
       engine.save_state(out);
       rollback_state = std::move(out).str();
       rollback_displacement = phase.displacement;
-    } else {
-      // At strain_rate from the switch on (from the start without the adaptive rate: the same
-      // steps as a constant-rate run).
-      const long end_step =
-          phase.switch_step +
-          static_cast<long>(std::ceil((total_time - phase.switch_displacement / result.plate_speed) / dt));
-      if (engine.step_count() >= end_step) break;
-      chunk = std::min(interval, end_step - engine.step_count());
-    }
-    if (phase.fast) {
       // Step by step while the plate speeds up, then at fast_speed.
       for (long k = 0; k < chunk; ++k) {
         const long step = engine.step_count();
@@ -279,8 +267,14 @@ UniaxialCompressionResult run_uniaxial_compression(const Packing& bonded_model,
         phase.displacement += speed * dt;
         if (k + 1 < chunk) engine.run(1);
       }
-    } else if (chunk > 1) {
-      engine.run(chunk - 1);
+    } else {
+      // At strain_rate from the switch on (from the start without the adaptive rate: the same
+      // steps as a constant-rate run).
+      const long end_step =
+          phase.switch_step + static_cast<long>(std::ceil((total_time - phase.displacement / result.plate_speed) / dt));
+      if (engine.step_count() >= end_step) break;
+      chunk = std::min(interval, end_step - engine.step_count());
+      if (chunk > 1) engine.run(chunk - 1);
     }
     const dem::Diagnostics d = engine.step_measured();
     if (phase.fast && d.broken_bonds > 0) {
@@ -292,7 +286,7 @@ UniaxialCompressionResult run_uniaxial_compression(const Packing& bonded_model,
       phase.fast = false;
       phase.switch_step = engine.step_count();
       phase.switch_time = engine.time() - t_start;
-      phase.switch_displacement = phase.displacement = rollback_displacement;
+      phase.displacement = rollback_displacement;
       set_plate_speed(result.plate_speed);
       continue;
     }
@@ -301,7 +295,7 @@ UniaxialCompressionResult run_uniaxial_compression(const Packing& bonded_model,
     p.time = d.time - t_start;
     // The point is the state at the start of the measured step (d.time), as at a constant rate.
     p.displacement = phase.fast ? phase.displacement - fast_phase_speed(d.step) * dt
-                                : phase.switch_displacement + result.plate_speed * (p.time - phase.switch_time);
+                                : phase.displacement + result.plate_speed * (p.time - phase.switch_time);
     p.strain = p.displacement / result.height;
     p.force = plate_force();
     p.stress = p.force / result.area;
@@ -344,10 +338,10 @@ UniaxialCompressionResult run_uniaxial_compression(const Packing& bonded_model,
     if (p.stress > 0.2 * peak && p.strain <= result.strain_at_peak && p.strain_energy > 0.0)
       result.max_kinetic_ratio = std::max(result.max_kinetic_ratio, p.kinetic_energy / p.strain_energy);
   result.breaks = engine.bond_breaks();
-  if (adaptive && !phase.fast) result.rate_switch_strain = phase.switch_displacement / result.height;
+  if (adaptive && !phase.fast) result.rate_switch_strain = phase.displacement / result.height;
   for (const auto& b : result.breaks)  // every break comes after the switch to strain_rate
-    result.break_strain.push_back(
-        (phase.switch_displacement + result.plate_speed * (b.time - t_start - phase.switch_time)) / result.height);
+    result.break_strain.push_back((phase.displacement + result.plate_speed * (b.time - t_start - phase.switch_time)) /
+                                  result.height);
   result.broken_bonds = result.breaks.size();
   result.model = engine.packing();  // fixed = substrate and glued plate layers
   result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
