@@ -204,6 +204,7 @@ class LsSimulation {
   void scan_neighbors(int i, bool only_greater, Visit&& visit);
   void add_neighbor(int i, std::uint32_t entry);
   void relocate_list(int i);
+  void pack_lists();
   void drop_neighbor(int i, std::uint32_t entry);
   void find_neighbors(int i, bool only_greater);
   void transfer(int i);
