@@ -209,6 +209,14 @@ UniaxialCompressionResult run_uniaxial_compression(const Packing& bonded_model,
     return fast_speed * 0.5 *
            (1.0 - std::cos(std::numbers::pi * (static_cast<double>(step) + 0.5) / static_cast<double>(ramp_steps)));
   };
+  const auto slow_sample = [&](double factor) {
+    ParticleStore& particles = engine.particles();
+    for (std::size_t k = 0; k < n; ++k) {
+      if (particles.fixed[k]) continue;
+      particles.velocity[k] *= factor;
+      particles.angular_velocity[k] *= factor;
+    }
+  };
   const double max_displacement = options.max_strain * result.height;
   RatePhase phase;
   phase.fast = adaptive;
@@ -278,11 +286,18 @@ UniaxialCompressionResult run_uniaxial_compression(const Packing& bonded_model,
     }
     const dem::Diagnostics d = engine.step_measured();
     if (phase.fast && d.broken_bonds > 0) {
-      // A bond broke at the fast rate: back to the last point, slowly from there. (The plate slows
-      // from fast_speed in one step while the sample keeps the fast run's velocities: docs/opal.md.)
+      // A bond broke at the fast rate: back to the last point, slowly from there.
       result.rolled_back_steps += chunk;
       std::istringstream in(rollback_state);
       engine.load_state(in);
+      // The sample slows down with the plate: below its first break a column compressed at a
+      // constant rate moves as the plate drives it, every velocity (and spin) in proportion to the
+      // plate's speed, so scaling them by the ratio of the speeds gives the state the constant-rate
+      // run has at this strain. Left at the fast run's velocities, the sample would run into the
+      // slowed plate's lag (docs/opal.md, "Adaptive rate": measured both ways).
+      const long saved_step = engine.step_count();
+      const double speed_before = saved_step > 0 ? fast_phase_speed(saved_step - 1) : 0.0;
+      if (speed_before > result.plate_speed) slow_sample(result.plate_speed / speed_before);
       phase.fast = false;
       phase.switch_step = engine.step_count();
       phase.switch_time = engine.time() - t_start;
