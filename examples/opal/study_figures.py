@@ -102,6 +102,12 @@ def test_row(rep, points):
             "simulations": 1}
 
 
+def silica_bond(rep):
+    """The silica bonds' Young's modulus and strength [Pa] of a `test compress` report."""
+    silica = rep["parameters"]["silica"]
+    return silica["youngs_modulus_Pa"], silica["strength_Pa"]
+
+
 def tables(study, data):
     os.makedirs(data, exist_ok=True)
     runs, curves = [], []
@@ -122,13 +128,12 @@ def tables(study, data):
         else:
             rep = json.load(open(os.path.join(study, folder, "report.json")))
             row = test_row(rep, points)
-            e_b, s_max = rep["materials"]["silica"]["youngs_modulus"], rep["materials"]["silica"]["strength"]
+            e_b, s_max = silica_bond(rep)
         runs.append({"run": name, "bond_youngs_modulus": e_b, "bond_strength": s_max, **row,
                      **model_row(study, name)})
         curves += thin(points)
     rep = json.load(open(os.path.join(study, "fcc-touching-test", "report.json")))
-    runs.append({"run": "touching", "bond_youngs_modulus": rep["materials"]["silica"]["youngs_modulus"],
-                 "bond_strength": rep["materials"]["silica"]["strength"],
+    runs.append({"run": "touching", "bond_youngs_modulus": silica_bond(rep)[0], "bond_strength": silica_bond(rep)[1],
                  **test_row(rep, curve_points(study, "fcc-touching-test", "touching")), **model_row(study, "touching")})
     for name, folder in BULK:
         bulk = json.load(open(os.path.join(study, folder, "report.json")))
