@@ -109,6 +109,16 @@ run bench_fba 10                   # prints the iterations per phase (contractio
 [ "$quick" = 1 ] || run bench_fba seeds 10000 2 classic   # 10^4 spheres, first version (no momentum)
 [ "$quick" = 1 ] || run bench_fba seeds 10000 2           # ... and now: iterations, contacts, g(r)
 if [ "$quick" = 1 ]; then run bench_compress 1 - 1 500; else run bench_compress 1; fi
+# Issue #14's adaptive rate (docs/opal.md, "Adaptive rate"): the 3,365-particle FCC opal of
+# examples/opal/run.sh compressed at the automatic rate and with --elastic-speedup 10, from a
+# fresh folder: steps and CPU seconds of each, E and strength against the automatic rate.
+if [ "$quick" != 1 ] && [ -x "$BUILD/packlab" ]; then
+  echo; echo "== adaptive rate, 3,365-particle FCC opal: automatic rate vs --elastic-speedup 10 =="
+  adaptive=$(mktemp -d)
+  /usr/bin/python3 "$ROOT/examples/opal/adaptive_rate.py" "$adaptive" "$adaptive/table.csv" --packlab "$BUILD/packlab" \
+    --speedups 10 --uncoated-only --workers 1 | grep -v '^+'
+  rm -rf "$adaptive"
+fi
 # The quasi-static solver (docs/static-solver.md): E of the same ~54,000-particle opal from one
 # solve, and G' in six orientations of the N = 8000 shear structure.
 run bench_static compress 1 - cholmod -1

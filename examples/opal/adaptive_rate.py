@@ -8,7 +8,10 @@ opal at the constant automatic rate with 100 times the silica density (mass scal
 automatic rate is set per elastic-wave transit, so it runs the same steps to max_strain.
 
     adaptive_rate.py OUT_DIR DATA_CSV [--packlab packlab] [--speedups 4,10,20] [--coated-speedups 4,10]
-                     [--workers 2]
+                     [--workers 2] [--uncoated-only]
+
+--uncoated-only runs the uncoated opal alone, at the automatic rate and at --speedups, without
+the mass-scaling run (make bench: bench/run.sh, --speedups 10, about 2.5 CPU-minutes).
 
 Runs are kept in OUT_DIR (a finished one is not run again); DATA_CSV gets one row per run:
 docs/data/opal_adaptive_rate.csv. The CPU seconds are those of the process (/usr/bin/time is not
@@ -86,14 +89,17 @@ def main(argv=None):
     p.add_argument("--speedups", default="4,10,20", help="for the uncoated opal")
     p.add_argument("--coated-speedups", default="4,10", help="for the coated one (13 CPU minutes per run)")
     p.add_argument("--workers", type=int, default=2)
+    p.add_argument("--uncoated-only", action="store_true", help="no coated opal, no mass-scaling run")
     args = p.parse_args(argv)
     os.makedirs(args.out, exist_ok=True)
     build_models(args.out, args.packlab)
     speedups = {name: [1.0] + [float(s) for s in text.split(",")]
                 for name, text in (("paper", args.speedups), ("coated", args.coated_speedups))}
     # The long runs first, so that the two workers end together.
-    jobs = [("coated", s, None, ()) for s in speedups["coated"]] + [("paper", s, None, ()) for s in speedups["paper"]]
-    jobs.append(("paper", 1.0, "paper-density100", ("--density", "129700")))
+    jobs = [] if args.uncoated_only else [("coated", s, None, ()) for s in speedups["coated"]]
+    jobs += [("paper", s, None, ()) for s in speedups["paper"]]
+    if not args.uncoated_only:
+        jobs.append(("paper", 1.0, "paper-density100", ("--density", "129700")))
     with ThreadPoolExecutor(args.workers) as pool:
         results = list(pool.map(lambda job: compress(args.out, args.packlab, *job), jobs))
     table = {k: [] for k in ("sample", "elastic_speedup", "youngs_modulus_gpa", "strength_mpa", "strain_at_peak",
