@@ -133,7 +133,8 @@ def tables(study, data):
                      **model_row(study, name)})
         curves += thin(points)
     rep = json.load(open(os.path.join(study, "fcc-touching-test", "report.json")))
-    runs.append({"run": "touching", "bond_youngs_modulus": silica_bond(rep)[0], "bond_strength": silica_bond(rep)[1],
+    e_b, s_max = silica_bond(rep)
+    runs.append({"run": "touching", "bond_youngs_modulus": e_b, "bond_strength": s_max,
                  **test_row(rep, curve_points(study, "fcc-touching-test", "touching")), **model_row(study, "touching")})
     for name, folder in BULK:
         bulk = json.load(open(os.path.join(study, folder, "report.json")))
