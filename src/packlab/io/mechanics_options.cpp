@@ -105,8 +105,8 @@ void add_uniaxial_compression_options(ConfigSchema& schema, mechanics::UniaxialC
       .range({0.0, 0.5, true, true})
       .number("elastic_speedup", o.elastic_speedup,
               "Dynamic solver: the plate moves this many times faster until the first bond breaks, then the run "
-              "goes back to the curve point before that break and on at strain_rate (1 = strain_rate throughout; "
-              "docs/opal.md)")
+              "goes back to the curve point before that break, slows the sample down with the plate and goes on at "
+              "strain_rate (1 = strain_rate throughout; docs/opal.md)")
       .range({1.0, 1e4, false, false})
       .number("stop_drop", o.stop_drop,
               "Stop past the peak once the stress is below this fraction of it (static solver: also once it "
