@@ -20,7 +20,6 @@ needed: resource.getrusage of the child), with `workers` runs side by side on th
 
 import argparse
 import json
-import math
 import os
 import subprocess
 import sys
@@ -108,13 +107,12 @@ def main(argv=None):
                              "strength_change_percent", "steps_ratio", "effective_speedup",
                              "constant_rate_steps_to_switch")}
     base = {}
-    strain_per_step, interval = {}, {}  # of the constant-rate run, from its curve (points' step, strain)
+    strain_per_step = {}  # of the constant-rate run, from its curve (points' step, strain)
     for (name, s, label, _), (report, cpu) in zip(jobs, results):
         if s == 1.0 and label is None:
             base[name] = report
             curve = read_table(os.path.join(args.out, f"{name}-x1", "curve.csv"))
-            interval[name] = int(curve["step"][2] - curve["step"][1])
-            strain_per_step[name] = (curve["strain"][2] - curve["strain"][1]) / interval[name]
+            strain_per_step[name] = (curve["strain"][2] - curve["strain"][1]) / (curve["step"][2] - curve["step"][1])
         ref = base[name]
         adaptive = report.get("adaptive_rate") or {}
         steps = report["steps"] + adaptive.get("rolled_back_steps", 0)
@@ -133,9 +131,7 @@ def main(argv=None):
         table["modulus_change_percent"].append(100.0 * (report["youngs_modulus"] / ref["youngs_modulus"] - 1.0))
         table["strength_change_percent"].append(100.0 * (report["strength"] / ref["strength"] - 1.0))
         table["steps_ratio"].append(ref["steps"] / steps)
-        # interval / fast interval, as the test computes it (std::lround: halves away from zero)
-        table["effective_speedup"].append(
-            interval[name] / max(1, math.floor(interval[name] / s + 0.5)) if adaptive else 1.0)
+        table["effective_speedup"].append(adaptive.get("effective_speedup", 1.0))
         # Where the switch lies in the constant-rate run: the steps that the fast phase replaces.
         table["constant_rate_steps_to_switch"].append(
             float("nan") if switch is None else round(switch / strain_per_step[name]))
@@ -144,8 +140,9 @@ def main(argv=None):
               f"({table['strength_change_percent'][-1]:+.2f} %), {steps} steps ({table['steps_ratio'][-1]:.2f}x "
               f"fewer), {table['cpu_seconds'][-1]:.1f} CPU s")
     write_table(args.data_csv, table,
-                comment=f"examples/opal/adaptive_rate.py (--speedups {args.speedups} --coated-speedups "
-                f"{args.coated_speedups}, {args.workers} runs side by side): the FCC opals of run.sh at the automatic rate (x1) and with --elastic-speedup")
+                comment=f"examples/opal/adaptive_rate.py (--speedups {args.speedups} "
+                + ("--uncoated-only" if args.uncoated_only else f"--coated-speedups {args.coated_speedups}")
+                + f", {args.workers} runs side by side): the FCC opals of run.sh at the automatic rate (x1) and with --elastic-speedup")
     print(f"wrote {args.data_csv}")
 
 

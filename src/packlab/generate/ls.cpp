@@ -157,7 +157,8 @@ void LsSimulation::pack_lists() {
   note_memory(n * sizeof(int));
   std::size_t end = 0;
   for (const int i : by_base) {
-    std::copy_n(list_.data() + list_base_[i], list_fill_[i], list_.data() + end);  // end <= base
+    const std::uint32_t* from = list_.data() + list_base_[i];
+    std::copy(from, from + list_fill_[i], list_.data() + end);  // end <= base: std::copy allows the overlap
     list_base_[i] = static_cast<std::uint32_t>(end);
     list_cap_[i] = static_cast<std::uint16_t>(
         std::min<std::size_t>(list_cap_[i], list_fill_[i] + 1 + list_fill_[i] / 8));  // as build_lists

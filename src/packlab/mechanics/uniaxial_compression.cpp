@@ -299,7 +299,7 @@ UniaxialCompressionResult run_uniaxial_compression(const Packing& bonded_model,
       const double speed_before = saved_step > 0 ? fast_phase_speed(saved_step - 1) : 0.0;
       if (speed_before > result.plate_speed) slow_sample(result.plate_speed / speed_before);
       phase.fast = false;
-      phase.switch_step = engine.step_count();
+      phase.switch_step = saved_step;
       phase.switch_time = engine.time() - t_start;
       phase.displacement = rollback_displacement;
       set_plate_speed(result.plate_speed);
