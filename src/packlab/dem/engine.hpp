@@ -303,6 +303,10 @@ class Engine {
     // Bonds that failed this step (their BondBreak is filled after the force loop: 4 bytes of
     // room per bond of the range instead of a whole BondBreak).
     std::vector<int> failed_bonds;
+    // Crossing bonds that broke this step, whose listed pair is unflagged after the barrier:
+    // before it, other threads may be evaluating that pair, which must still see it bonded
+    // (as with one thread). Room for every crossing bond (partition_work).
+    std::vector<int> broken_crossing_bonds;
     Totals totals;
   };
   template <bool Measure>
@@ -326,7 +330,8 @@ class Engine {
   template <class Law, bool OneType, bool Measure>
   void contact_block(ContactModel<Law>& model, PairBlock<Law>& block);
   template <class BondLaw, bool Measure>
-  void bond_contribution(BondModel<BondLaw>& model, std::size_t b, Contribution& out, ThreadWork& work);
+  void bond_contribution(BondModel<BondLaw>& model, std::size_t b, Contribution& out, ThreadWork& work,
+                         bool crossing = false);
   // Walls over fixed chunks of particles (inside the parallel region); returns the largest
   // k / m of the wall contacts.
   template <class Law, bool Measure>
@@ -372,6 +377,7 @@ class Engine {
   // bond_order_[bond_first_[k] .. bond_first_[k + 1]) are the bonds owned by particle k.
   // Both empty without bonds.
   std::vector<int> bond_order_, bond_first_;
+  std::vector<int> partition_first_cut_;  // partition_work's scratch (kept: it runs at every rebuild)
   ContactModels model_;
   BondModels bond_model_;
   std::vector<ThreadWork> work_;       // per thread (dem/step.cpp)

@@ -6,14 +6,14 @@
 // Threads and the order of sums. Each thread owns a contiguous range of particles (sorted
 // along a space-filling curve) with the listed pairs and bonds whose first particle is in it
 // (partition_work). A pair (i, j) has j >= i, so a particle receives contributions only from
-// pairs and bonds owned by itself or by earlier ranges. The few that reach a particle of a
-// later range ("crossing") are evaluated first and kept; after one barrier each thread adds
-// the crossing contributions of earlier threads to its particles and then its own, in pair
-// order. Every particle's force is then the same sum in the same order as with one thread:
-// the result does not depend on the thread count, no thread writes another's particles, and
-// there is no whole-size buffer to clear or reduce.
+// pairs and bonds owned by itself or by earlier ranges. Those that reach a particle of a
+// later range ("crossing") are evaluated first, the pairs shared out evenly among all threads,
+// and kept; after one barrier each thread adds the crossing contributions of earlier threads
+// to its particles and then its own, in pair order. Every particle's force is then the same sum in the same order as
+// with one thread: the result does not depend on the thread count, no thread writes another's particles, and there is
+// no whole-size buffer to clear or reduce.
 //
-// The contact law runs over blocks of 64 listed pairs into per-component arrays (PairBlock):
+// The contact law runs over blocks of 30 listed pairs into per-component arrays (PairBlock):
 // no branch on whether a pair touches (its result is masked), so the loop vectorizes; the
 // forces are then added to the particles in a short scalar loop. packlab is compiled without
 // fused multiply-add contraction (-ffp-contract=off, CMakeLists.txt): a pair's force must not depend on whether it
@@ -51,22 +51,56 @@ void Engine::partition_work() {
   const int T = threads_;
   const auto& first = neighbors_.first_pairs();
   const auto& partner = neighbors_.partner();
-  // Ranges holding about equal work: a listed pair counts 1, a bond 2 (its law does more).
+  // A listed pair counts 1, a bond 2 (its law does more).
   const bool any_bonds = !bond_first_.empty();
   auto work_before = [&](int i) { return static_cast<long>(first[i]) + (any_bonds ? 2L * bond_first_[i] : 0L); };
   const long total = work_before(n);
   // Never shrunk: switching between one thread and more (adapt_threads) keeps every thread's
   // lists and their capacity; only the first T are used.
   if (work_.size() < static_cast<std::size_t>(T)) work_.resize(static_cast<std::size_t>(T));
+  // The crossing pairs of all threads are shared out evenly before the step's barrier
+  // (pair_forces), so the ranges are cut for equal work after it: equal pairs and bonds besides
+  // the crossing ones. Which pairs cross depends on the cuts, so the cuts are found twice: first
+  // for equal work in all, then for equal work besides what crosses those first cuts (at 2
+  // threads 17 % of the first range's pairs cross in the relax benchmark).
+  std::vector<int>& first_cut = partition_first_cut_;
+  first_cut.assign(static_cast<std::size_t>(T), n);
+  for (int t = 0, i = 0; t + 1 < T; ++t) {
+    const long target = total * (t + 1) / T;
+    while (i < n && work_before(i) < target) ++i;
+    first_cut[static_cast<std::size_t>(t)] = i;
+  }
+  // Work of particle k after the barrier under the first cuts, in half pairs: a pair 2, a
+  // crossing pair 1 (it is still walked, and its kept result added), a bond 4.
+  auto own_work = [&](int k, int range_end) {
+    long w = 0;
+    for (int p = first[k]; p < first[k + 1]; ++p) w += 1 + (partner[p] < range_end);
+    if (any_bonds)
+      for (int q = bond_first_[k]; q < bond_first_[k + 1]; ++q) {
+        const auto b = static_cast<std::size_t>(bond_order_[static_cast<std::size_t>(q)]);
+        w += 4 * (std::max(bonds_.i[b], bonds_.j[b]) < range_end);
+      }
+    return w;
+  };
+  long own_total = 0;
+  for (int t = 0, k = 0; t < T; ++t)
+    for (; k < first_cut[static_cast<std::size_t>(t)]; ++k)
+      own_total += own_work(k, first_cut[static_cast<std::size_t>(t)]);
   int i = 0;
+  long own_before = 0;
+  int first_range = 0;  // the first cut's range of particle i
   for (int t = 0; t < T; ++t) {
     ThreadWork& w = work_[static_cast<std::size_t>(t)];
     w.particle_begin = i;
-    const long target = total * (t + 1) / T;
+    const long target = own_total * (t + 1) / T;
     if (t + 1 == T)
       i = n;
     else
-      while (i < n && work_before(i) < target) ++i;
+      while (i < n && own_before < target) {
+        while (i >= first_cut[static_cast<std::size_t>(first_range)]) ++first_range;
+        own_before += own_work(i, first_cut[static_cast<std::size_t>(first_range)]);
+        ++i;
+      }
     w.particle_end = i;
     w.crossing_pairs.clear();
     w.crossing_pair_owners.clear();
@@ -86,6 +120,7 @@ void Engine::partition_work() {
       if (std::max(bonds_.i[b], bonds_.j[b]) >= w.particle_end) w.crossing_bonds.push_back(q);
     }
     w.crossing_bond_results.resize(w.crossing_bonds.size());
+    w.broken_crossing_bonds.reserve(w.crossing_bonds.size());
     // A bond breaks at most once per step and each is evaluated by one thread: with room for
     // all of this range's bonds, recording a break never allocates, so nothing in the step's
     // parallel region can throw (an exception there, between barriers, would abort).
@@ -261,7 +296,8 @@ void Engine::contact_block(ContactModel<Law>& model, PairBlock<Law>& block) {
 }
 
 template <class BondLaw, bool Measure>
-void Engine::bond_contribution(BondModel<BondLaw>& model, std::size_t b, Contribution& out, ThreadWork& work) {
+void Engine::bond_contribution(BondModel<BondLaw>& model, std::size_t b, Contribution& out, ThreadWork& work,
+                               bool crossing) {
   out = Contribution{};
   const int i = bonds_.i[b], j = bonds_.j[b];
   // Oriented from the bond's owner (the smaller index) to the other particle.
@@ -283,7 +319,12 @@ void Engine::bond_contribution(BondModel<BondLaw>& model, std::size_t b, Contrib
   if (f.broken) {
     bonds_.state[b] = 1;
     // The pair interacts through the contact law from the next step on. The pair belongs to
-    // the bond's owner, so only this thread touches it, and it was evaluated before.
+    // the bond's owner, so only this thread writes its flag; a crossing pair may be evaluated
+    // by another thread before the barrier, so its flag waits until after it.
+    if (crossing) {
+      work.broken_crossing_bonds.push_back(static_cast<int>(b));
+      return;
+    }
     if (const int p = listed_pair_of(b); p >= 0) pair_bonded_[static_cast<std::size_t>(p)] = 0;
     return;
   }
@@ -353,6 +394,7 @@ void Engine::pair_forces(ContactModel<Law>& model, Totals& totals) {
     ThreadWork& work = work_[static_cast<std::size_t>(t)];
     work.totals = Totals{};
     work.failed_bonds.clear();
+    work.broken_crossing_bonds.clear();
     Totals& local = work.totals;
     PairBlock<Law> block;
     const std::uint8_t no_crossing = 0;
@@ -389,20 +431,47 @@ void Engine::pair_forces(ContactModel<Law>& model, Totals& totals) {
     };
     const int begin = work.particle_begin, end = work.particle_end;
 
-    // 1. The pairs and bonds that reach a later thread's particles, kept for both sides.
+    // 1. The pairs and bonds that reach a later thread's particles, kept for both sides. The
+    // crossing pairs of all threads, in thread order, are shared out so that every thread has
+    // about the same work before the barrier (its own crossing bonds count 2 per bond); a
+    // pair's result does not depend on which thread evaluates it. Evaluated by their owners
+    // alone, they kept the later threads waiting at the barrier.
     if (T > 1) {
-      const int crossing = static_cast<int>(work.crossing_pairs.size());
-      std::fill(work.crossing_pair_acts.begin(), work.crossing_pair_acts.end(), 0);
-      for (int s = 0; s < crossing; s += capacity) {
-        const int count = std::min(capacity, crossing - s);
-        run_block.template operator()<true>(work.crossing_pairs.data(), work.crossing_pair_owners.data(), s, count,
-                                            INT_MAX);
-        // The acting ones, in list order: find each one's place among the crossing pairs.
-        int k = s;
-        for (int c = 0; c < block.count; ++c) {
-          while (work.crossing_pairs[static_cast<std::size_t>(k)] != block.pair[c]) ++k;
-          work.crossing_pair_results[static_cast<std::size_t>(k)] = block_result(c);
-          work.crossing_pair_acts[static_cast<std::size_t>(k)] = 1;
+      long crossing_total = 0, crossing_bond_work = 0;
+      for (int s = 0; s < T; ++s) {
+        crossing_total += static_cast<long>(work_[static_cast<std::size_t>(s)].crossing_pairs.size());
+        crossing_bond_work += 2L * static_cast<long>(work_[static_cast<std::size_t>(s)].crossing_bonds.size());
+      }
+      // This thread's slice [lo, hi) of the concatenated crossing pairs.
+      const long share = (crossing_total + crossing_bond_work) / T;
+      long lo = 0;
+      for (int s = 0; s < t; ++s)
+        lo += std::max(0L, share - 2L * static_cast<long>(work_[static_cast<std::size_t>(s)].crossing_bonds.size()));
+      lo = std::min(lo, crossing_total);
+      const long hi =
+          t + 1 == T
+              ? crossing_total
+              : std::min(crossing_total, lo + std::max(0L, share - 2L * static_cast<long>(work.crossing_bonds.size())));
+      long offset = 0;
+      for (int s = 0; s < T && offset < hi; ++s) {
+        ThreadWork& owner_work = work_[static_cast<std::size_t>(s)];
+        const long size = static_cast<long>(owner_work.crossing_pairs.size());
+        const int from = static_cast<int>(std::max(lo, offset) - offset);
+        const int to = static_cast<int>(std::min(hi, offset + size) - offset);
+        offset += size;
+        if (from >= to) continue;
+        std::fill(owner_work.crossing_pair_acts.begin() + from, owner_work.crossing_pair_acts.begin() + to, 0);
+        for (int s0 = from; s0 < to; s0 += capacity) {
+          const int count = std::min(capacity, to - s0);
+          run_block.template operator()<true>(owner_work.crossing_pairs.data(), owner_work.crossing_pair_owners.data(),
+                                              s0, count, INT_MAX);
+          // The acting ones, in list order: find each one's place among the crossing pairs.
+          int k = s0;
+          for (int c = 0; c < block.count; ++c) {
+            while (owner_work.crossing_pairs[static_cast<std::size_t>(k)] != block.pair[c]) ++k;
+            owner_work.crossing_pair_results[static_cast<std::size_t>(k)] = block_result(c);
+            owner_work.crossing_pair_acts[static_cast<std::size_t>(k)] = 1;
+          }
         }
       }
       crossing_seen = 0;
@@ -413,10 +482,13 @@ void Engine::pair_forces(ContactModel<Law>& model, Totals& totals) {
               for (std::size_t c = 0; c < work.crossing_bonds.size(); ++c)
                 bond_contribution<BondLaw, Measure>(
                     bonds, static_cast<std::size_t>(bond_order_[static_cast<std::size_t>(work.crossing_bonds[c])]),
-                    work.crossing_bond_results[c], work);
+                    work.crossing_bond_results[c], work, true);
             },
             bond_model_);
 #pragma omp barrier
+      for (const int b : work.broken_crossing_bonds)
+        if (const int p = listed_pair_of(static_cast<std::size_t>(b)); p >= 0)
+          pair_bonded_[static_cast<std::size_t>(p)] = 0;
     }
 
     // 2. This thread's particles: what earlier threads' acting crossing pairs give them, then
