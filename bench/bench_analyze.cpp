@@ -15,6 +15,7 @@
 #include "packlab/analyze/coordination.hpp"
 #include "packlab/analyze/fabric.hpp"
 #include "packlab/analyze/pore_size.hpp"
+#include "packlab/core/thread_wait.hpp"
 #include "packlab/generate/random.hpp"
 #include "packlab/io/packing_io.hpp"
 
@@ -42,6 +43,7 @@ Packing tile(const Packing& p, int nx, int ny, int nz) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  ensure_passive_thread_wait(argv);  // as the packlab program does (core/thread_wait.hpp)
   const int threads = argc > 1 ? std::atoi(argv[1]) : 0;
   Packing packing;
   std::string source;

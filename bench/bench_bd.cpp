@@ -8,12 +8,14 @@
 
 #include <cstdlib>
 
+#include "packlab/core/thread_wait.hpp"
 #include "packlab/generate/brownian_dynamics.hpp"
 
 using namespace packlab;
 using namespace packlab::generate;
 
 int main(int argc, char** argv) {
+  ensure_passive_thread_wait(argv);  // as the packlab program does (core/thread_wait.hpp)
   BdParams p;
   p.particles = argc > 1 ? std::atol(argv[1]) : 8000;
   const long steps = argc > 2 ? std::atol(argv[2]) : 2000;

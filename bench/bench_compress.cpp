@@ -23,6 +23,7 @@
 
 #include "memory_report.hpp"
 #include "opal_case.hpp"
+#include "packlab/core/thread_wait.hpp"
 #include "packlab/mechanics/opal_materials.hpp"
 #include "packlab/mechanics/uniaxial_compression.hpp"
 
@@ -30,6 +31,7 @@ using namespace packlab;
 using namespace packlab::bench;
 
 int main(int argc, char** argv) {
+  ensure_passive_thread_wait(argv);  // as the packlab program does (core/thread_wait.hpp)
   const int threads = argc > 1 ? std::atoi(argv[1]) : 1;
   const std::string file = argc > 2 ? argv[2] : "-";
   const int tiles = argc > 3 ? std::atoi(argv[3]) : 4;

@@ -30,6 +30,7 @@
 
 #include "packlab/analyze/coordination.hpp"
 #include "packlab/analyze/rdf.hpp"
+#include "packlab/core/thread_wait.hpp"
 #include "packlab/generate/fba.hpp"
 #include "packlab/generate/opal.hpp"
 
@@ -149,6 +150,7 @@ int seeds_mode(long n, int k, bool classic) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  ensure_passive_thread_wait(argv);  // as the packlab program does (core/thread_wait.hpp)
   if (argc > 1 && std::string(argv[1]) == "seeds") {
     const long n = argc > 2 ? std::atol(argv[2]) : 10000;
     const int k = argc > 3 ? std::atoi(argv[3]) : 3;

@@ -22,6 +22,7 @@
 #include <cstdlib>
 #include <string>
 
+#include "packlab/core/thread_wait.hpp"
 #include "packlab/generate/ls.hpp"
 
 using namespace packlab;
@@ -88,6 +89,7 @@ Run run_case(long n, double rate, double target, double ratio, double vol_ratio,
 }  // namespace
 
 int main(int argc, char** argv) {
+  ensure_passive_thread_wait(argv);  // as the packlab program does (core/thread_wait.hpp)
   if (argc > 1 && std::string(argv[1]) == "scaling") {
     const long n1 = argc > 2 ? std::atol(argv[2]) : 10000;
     const long n2 = argc > 3 ? std::atol(argv[3]) : 100000;

@@ -12,10 +12,12 @@
 
 #include "packlab/core/neighbor_list.hpp"
 #include "packlab/core/random.hpp"
+#include "packlab/core/thread_wait.hpp"
 
 using namespace packlab;
 
 int main(int argc, char** argv) {
+  ensure_passive_thread_wait(argv);  // as the packlab program does (core/thread_wait.hpp)
   const long structural = argc > 1 ? std::atol(argv[1]) : 8000;
   const long voids = argc > 2 ? std::atol(argv[2]) : 2000;
   const double phi = argc > 3 ? std::atof(argv[3]) : 0.4;

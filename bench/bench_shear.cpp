@@ -11,6 +11,7 @@
 #include <cstdlib>
 #include <string>
 
+#include "packlab/core/thread_wait.hpp"
 #include "packlab/generate/bonding.hpp"
 #include "packlab/io/packing_io.hpp"
 #include "packlab/mechanics/oscillatory_shear.hpp"
@@ -19,6 +20,7 @@
 using namespace packlab;
 
 int main(int argc, char** argv) {
+  ensure_passive_thread_wait(argv);  // as the packlab program does (core/thread_wait.hpp)
   const bool fixed_threads = argc > 1 && std::string(argv[argc - 1]) == "fixed";
   if (fixed_threads) --argc;
   const std::string file = argc > 1 ? argv[1] : "examples/shear/data/vem_ns8000_nv2000.xyz";

@@ -10,11 +10,13 @@
 #include <cstdlib>
 #include <string>
 
+#include "packlab/core/thread_wait.hpp"
 #include "packlab/generate/vem.hpp"
 
 using namespace packlab;
 
 int main(int argc, char** argv) {
+  ensure_passive_thread_wait(argv);  // as the packlab program does (core/thread_wait.hpp)
   generate::VemParams p;
   const bool fixed_threads = argc > 1 && std::string(argv[argc - 1]) == "fixed";
   if (fixed_threads) --argc;
