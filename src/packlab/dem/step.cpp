@@ -9,9 +9,9 @@
 // pairs and bonds owned by itself or by earlier ranges. Those that reach a particle of a
 // later range ("crossing") are evaluated first, the pairs shared out evenly among all threads,
 // and kept; after one barrier each thread adds the crossing contributions of earlier threads
-// to its particles and then its own, in pair order. Every particle's force is then the same sum in the same order as
-// with one thread: the result does not depend on the thread count, no thread writes another's particles, and there is
-// no whole-size buffer to clear or reduce.
+// to its particles and then its own, in pair order. Every particle's force is then the same
+// sum in the same order as with one thread: the result does not depend on the thread count,
+// no thread writes another's particles, and there is no whole-size buffer to clear or reduce.
 //
 // The contact law runs over blocks of 30 listed pairs into per-component arrays (PairBlock):
 // no branch on whether a pair touches (its result is masked), so the loop vectorizes; the
