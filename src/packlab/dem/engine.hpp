@@ -307,6 +307,9 @@ class Engine {
     // before it, other threads may be evaluating that pair, which must still see it bonded
     // (as with one thread). Room for every crossing bond (partition_work).
     std::vector<int> broken_crossing_bonds;
+    // The slice of all threads' crossing pairs (concatenated in thread order) that this thread
+    // evaluates before the barrier.
+    long crossing_slice_begin = 0, crossing_slice_end = 0;
     Totals totals;
   };
   template <bool Measure>

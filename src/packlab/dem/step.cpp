@@ -130,6 +130,25 @@ void Engine::partition_work() {
     // parallel region can throw (an exception there, between barriers, would abort).
     w.failed_bonds.reserve(static_cast<std::size_t>(bond_first_[w.particle_end] - bond_first_[w.particle_begin]));
   }
+  // Each thread's slice of the crossing pairs of all threads, concatenated in thread order,
+  // evaluated before the step's barrier (pair_forces): about the same work for every thread,
+  // its own crossing bonds counted.
+  long crossing_total = 0, crossing_bond_work = 0;
+  for (int t = 0; t < T; ++t) {
+    crossing_total += static_cast<long>(work_[static_cast<std::size_t>(t)].crossing_pairs.size());
+    crossing_bond_work += bond_work * static_cast<long>(work_[static_cast<std::size_t>(t)].crossing_bonds.size());
+  }
+  const long share = (crossing_total + crossing_bond_work) / T;
+  long slice_begin = 0;
+  for (int t = 0; t < T; ++t) {
+    ThreadWork& w = work_[static_cast<std::size_t>(t)];
+    const long own_bonds = bond_work * static_cast<long>(w.crossing_bonds.size());
+    const long slice_end =
+        t + 1 == T ? crossing_total : std::min(crossing_total, slice_begin + std::max(0L, share - own_bonds));
+    w.crossing_slice_begin = slice_begin;
+    w.crossing_slice_end = slice_end;
+    slice_begin = slice_end;
+  }
 }
 
 // The listed pairs of one block that act (touch, or are within the law's reach, and are not
@@ -437,26 +456,12 @@ void Engine::pair_forces(ContactModel<Law>& model, Totals& totals) {
 
     // 1. The pairs and bonds that reach a later thread's particles, kept for both sides. The
     // crossing pairs of all threads, in thread order, are shared out so that every thread has
-    // about the same work before the barrier (its own crossing bonds count 2 per bond); a
-    // pair's result does not depend on which thread evaluates it. Evaluated by their owners
+    // about the same work before the barrier (its own crossing bonds counted); a pair's result
+    // does not depend on which thread evaluates it. Evaluated by their owners
     // alone, they kept the later threads waiting at the barrier.
     if (T > 1) {
-      long crossing_total = 0, crossing_bond_work = 0;
-      for (int s = 0; s < T; ++s) {
-        crossing_total += static_cast<long>(work_[static_cast<std::size_t>(s)].crossing_pairs.size());
-        crossing_bond_work += bond_work * static_cast<long>(work_[static_cast<std::size_t>(s)].crossing_bonds.size());
-      }
-      // This thread's slice [lo, hi) of the concatenated crossing pairs.
-      const long share = (crossing_total + crossing_bond_work) / T;
-      long lo = 0;
-      for (int s = 0; s < t; ++s)
-        lo += std::max(0L,
-                       share - bond_work * static_cast<long>(work_[static_cast<std::size_t>(s)].crossing_bonds.size()));
-      lo = std::min(lo, crossing_total);
-      const long hi =
-          t + 1 == T ? crossing_total
-                     : std::min(crossing_total,
-                                lo + std::max(0L, share - bond_work * static_cast<long>(work.crossing_bonds.size())));
+      // This thread's slice [lo, hi) of the concatenated crossing pairs (partition_work).
+      const long lo = work.crossing_slice_begin, hi = work.crossing_slice_end;
       long offset = 0;
       for (int s = 0; s < T && offset < hi; ++s) {
         ThreadWork& owner_work = work_[static_cast<std::size_t>(s)];
