@@ -75,7 +75,7 @@ TEST(BondRecords, PulledBondFailsAtSigmaMaxAndIsLoggedAtItsMidpoint) {
   EXPECT_NEAR(b.position.x, x_mid, 1e-3 * r);
   EXPECT_NEAR(b.position.y, 5 * r, 1e-9 * r);
   EXPECT_TRUE(std::isnan(e.bond_strains()[0]));  // failed bonds have no strain
-  EXPECT_EQ(e.intact_bonds(), 1u);                // still relaxing
+  EXPECT_EQ(e.intact_bonds(), 1u);               // still relaxing
   Diagnostics d = e.step_measured();
   EXPECT_EQ(d.broken_bonds, 1u);
   e.run(static_cast<long>(1e-9 / 1e-12) + 2);
@@ -117,4 +117,73 @@ TEST(BondRecords, NormalCriterionBreaksCompressedBondsOnlyWhenAsked) {
       const BondForce f = ElasticBond::evaluate(g, p, s);
       EXPECT_EQ(f.failed, compressive || sign > 0) << "compressive_breakage " << compressive << " sign " << sign;
     }
+}
+
+TEST(BondRecords, BondsAreNamedByTheirInputIndexWhateverOrderTheEngineKeepsThemIn) {
+  // Three pulled pairs along x, at different heights and speeds, their bonds listed neither in
+  // the particles' order nor in space's (the engine keeps bonds by owner, in its own particle
+  // order). Strains, breaks and packing() name each bond by its index in the input list, and a
+  // checkpoint taken between two breaks continues bit for bit.
+  Packing p;
+  p.box.length = {40 * r, 30 * r, 10 * r};
+  p.box.periodic = {false, false, false};
+  const double speed[3] = {2.0, 1.0, 0.5};  // pairs A, B, C
+  const double height[3] = {25 * r, 15 * r, 5 * r};
+  // Input particles: moving B, fixed C, fixed A, moving C, moving A, fixed B.
+  const int moving[3] = {4, 0, 3}, fixed[3] = {2, 5, 1};
+  p.position.resize(6);
+  p.velocity.assign(6, Vec3{});
+  p.fixed.assign(6, 0);
+  p.density.assign(6, 1e12);
+  for (int k = 0; k < 3; ++k) {
+    p.position[fixed[k]] = {4 * r, height[k], 5 * r};
+    p.position[moving[k]] = {4 * r + l0, height[k], 5 * r};
+    p.velocity[moving[k]] = {speed[k], 0, 0};
+    p.fixed[fixed[k]] = 1;
+  }
+  p.radius.assign(6, r);
+  p.type.assign(6, 0);
+  p.bonds.add(moving[2], fixed[2], {0, 0, 0}, 0, l0);  // bond 0: pair C, breaks last
+  p.bonds.add(fixed[0], moving[0], {0, 0, 0}, 0, l0);  // bond 1: pair A, breaks first
+  p.bonds.add(moving[1], fixed[1], {0, 0, 0}, 0, l0);  // bond 2: pair B
+  const EngineConfig c = elastic_bond_config();
+  Engine e(p, c);
+  const double t_fail = l0 * sigma_max / E;  // at 1 m/s
+  e.run(static_cast<long>(0.4 * t_fail / 1e-12));
+  const std::vector<double> strain = e.bond_strains();
+  const Packing now = e.packing();
+  ASSERT_EQ(strain.size(), 3u);
+  for (std::size_t b = 0; b < 3; ++b) {
+    const double length = norm(now.position[now.bonds.j[b]] - now.position[now.bonds.i[b]]);
+    EXPECT_DOUBLE_EQ(strain[b], (length - l0) / l0) << "bond " << b;
+  }
+  EXPECT_EQ(now.bonds.i, p.bonds.i);
+  EXPECT_EQ(now.bonds.j, p.bonds.j);
+  // Pair A (2 m/s) has failed by 0.6 t*, pair B (1 m/s) by 1.1 t*, pair C (0.5 m/s) by 2.1 t*.
+  e.run(static_cast<long>(0.2 * t_fail / 1e-12));
+  ASSERT_EQ(e.bond_breaks().size(), 1u);
+  EXPECT_EQ(e.bond_breaks()[0].bond, 1u);
+  EXPECT_NEAR(e.bond_breaks()[0].position.y, height[0], 1e-9 * r);
+  EXPECT_TRUE(std::isnan(e.bond_strains()[1]));
+  EXPECT_FALSE(std::isnan(e.bond_strains()[0]));
+  EXPECT_FALSE(std::isnan(e.bond_strains()[2]));
+  std::stringstream state;
+  e.save_state(state);
+  Engine resumed(p, c);
+  resumed.load_state(state);
+  const long rest = static_cast<long>(1.5 * t_fail / 1e-12);
+  e.run(rest);
+  resumed.run(rest);
+  ASSERT_EQ(e.bond_breaks().size(), 3u);
+  EXPECT_EQ(e.bond_breaks()[1].bond, 2u);
+  EXPECT_EQ(e.bond_breaks()[2].bond, 0u);
+  EXPECT_NEAR(e.bond_breaks()[1].time, t_fail, 1.5e-12);
+  EXPECT_NEAR(e.bond_breaks()[2].time, 2 * t_fail, 1.5e-12);
+  EXPECT_NEAR(e.bond_breaks()[2].position.y, height[2], 1e-9 * r);
+  ASSERT_EQ(resumed.bond_breaks().size(), 3u);
+  for (std::size_t k = 0; k < 3; ++k) {
+    EXPECT_EQ(resumed.bond_breaks()[k].bond, e.bond_breaks()[k].bond);
+    EXPECT_EQ(resumed.bond_breaks()[k].time, e.bond_breaks()[k].time);
+  }
+  EXPECT_EQ(resumed.packing().position, e.packing().position);
 }

@@ -1,6 +1,8 @@
 // The engine's whole dynamic state in a binary checkpoint (Engine::save_state / load_state).
 #include <fmt/format.h>
 
+#include <type_traits>
+
 #include "packlab/core/binary_io.hpp"
 #include "packlab/core/error.hpp"
 #include "packlab/dem/engine.hpp"
@@ -35,8 +37,15 @@ void Engine::save_state(std::ostream& out) const {
   binary::write_vector(out, density_);
   binary::write_vector(out, original_index_);
   binary::write_vector(out, wraps_);
-  binary::write_vector(out, bonds_.state);
-  std::visit([&](const auto& bonds) { binary::write_vector(out, bonds.history); }, bond_model_);
+  // Bonds in the packing's order (the engine keeps them by owner): a checkpoint's bonds do not
+  // depend on how the engine stores them.
+  const auto in_input_order = [&](const auto& v) {
+    std::decay_t<decltype(v)> out_order(v.size());
+    for (std::size_t b = 0; b < v.size(); ++b) out_order[static_cast<std::size_t>(bond_input_index_[b])] = v[b];
+    return out_order;
+  };
+  binary::write_vector(out, in_input_order(bonds_.state));
+  std::visit([&](const auto& bonds) { binary::write_vector(out, in_input_order(bonds.history)); }, bond_model_);
   binary::write(out, static_cast<std::uint64_t>(broken_bonds_));
   binary::write_vector(out, walls_);
   std::visit([&](const auto& model) { binary::write_vector(out, model.wall_history); }, model_);
@@ -95,6 +104,13 @@ void Engine::load_state(std::istream& in) {
   binary::read(in, broken, "broken bond count");
   if (wraps_.size() != n || bond_state.size() != bonds_.i.size() || history_size != bonds_.i.size())
     fail_input("checkpoint does not match this packing's particles and bonds");
+  // Back to the engine's bond order.
+  const auto to_engine_order = [&](auto& v) {
+    auto input_order = v;
+    for (std::size_t b = 0; b < v.size(); ++b) v[b] = input_order[static_cast<std::size_t>(bond_input_index_[b])];
+  };
+  to_engine_order(bond_state);
+  std::visit([&](auto& model) { to_engine_order(model.history); }, bond_model_);
   bonds_.state = std::move(bond_state);
   broken_bonds_ = broken;
   binary::read_vector(in, walls_, "walls");

@@ -74,9 +74,12 @@ ContactForces Engine::contact_forces() const {
           }
       },
       model_);
+  // Bonds in the packing's bond order (the engine keeps them by owner).
+  std::vector<std::size_t> engine_bond(bonds_.i.size());
+  for (std::size_t b = 0; b < engine_bond.size(); ++b) engine_bond[static_cast<std::size_t>(bond_input_index_[b])] = b;
   std::visit(
       [&](const auto& bonds) {
-        for (std::size_t b = 0; b < bonds_.i.size(); ++b) {
+        for (const std::size_t b : engine_bond) {
           if (bonds_.state[b] != 0) continue;
           const std::size_t i = static_cast<std::size_t>(bonds_.i[b]), j = static_cast<std::size_t>(bonds_.j[b]);
           const Vec3 d = bond_vector(b);

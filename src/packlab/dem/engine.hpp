@@ -271,7 +271,8 @@ class Engine {
     double max_stiffness_over_mass = 0.0;
     std::size_t bond_breaks = 0;  // bonds that failed this step
   };
-  // Bonds in the engine's particle order; `image` is relative to the input frame (see wraps_).
+  // Bonds in the engine's particle order, sorted by owner (bond_first_); `image` is relative to
+  // the input frame (see wraps_).
   // Narrow types where the range allows (issue #14: bytes per bond; the constructor refuses
   // an image or material outside them). The listed pair a bond holds is not stored: it is
   // looked up when the neighbour list is rebuilt and when the bond breaks (listed_pair_of).
@@ -298,7 +299,7 @@ class Engine {
     std::vector<int> crossing_pair_owners;  // their particle i
     std::vector<Contribution> crossing_pair_results;
     std::vector<std::uint8_t> crossing_pair_acts;  // 1 if the pair acted (touched)
-    std::vector<int> crossing_bonds;               // positions in bond_order_, ascending
+    std::vector<int> crossing_bonds;               // bonds (engine order), ascending
     std::vector<Contribution> crossing_bond_results;
     // Bonds that failed this step (their BondBreak is filled after the force loop: 4 bytes of
     // room per bond of the range instead of a whole BondBreak).
@@ -376,10 +377,11 @@ class Engine {
   std::vector<Wall> walls_;
   std::vector<Vec3> wall_force_;  // per wall, last step
   NeighborList neighbors_;
-  // Bonds by the smaller of their two particle indices (their owner), then by bond index:
-  // bond_order_[bond_first_[k] .. bond_first_[k + 1]) are the bonds owned by particle k.
-  // Both empty without bonds.
-  std::vector<int> bond_order_, bond_first_;
+  // bonds_ is sorted by owner (the smaller of the two particle indices), then by input index:
+  // bonds bond_first_[k] .. bond_first_[k + 1] - 1 are the bonds owned by particle k, and
+  // bond_input_index_[b] is bond b's index in the packing's bond list (the API's bond index:
+  // breaks, strains, packing(), checkpoints). Both empty without bonds.
+  std::vector<int> bond_input_index_, bond_first_;
   std::vector<int> partition_first_cut_;  // partition_work's scratch (kept: it runs at every rebuild)
   ContactModels model_;
   BondModels bond_model_;

@@ -80,10 +80,8 @@ void Engine::partition_work() {
     long w = 0;
     for (int p = first[k]; p < first[k + 1]; ++p) w += 1 + (partner[p] < range_end);
     if (any_bonds)
-      for (int q = bond_first_[k]; q < bond_first_[k + 1]; ++q) {
-        const auto b = static_cast<std::size_t>(bond_order_[static_cast<std::size_t>(q)]);
+      for (int b = bond_first_[k]; b < bond_first_[k + 1]; ++b)
         w += 2 * bond_work * (std::max(bonds_.i[b], bonds_.j[b]) < range_end);
-      }
     return w;
   };
   long own_total = 0;
@@ -119,10 +117,8 @@ void Engine::partition_work() {
     w.crossing_bonds.clear();
     w.crossing_bond_results.clear();
     if (!any_bonds) continue;
-    for (int q = bond_first_[w.particle_begin]; q < bond_first_[w.particle_end]; ++q) {
-      const auto b = static_cast<std::size_t>(bond_order_[q]);
-      if (std::max(bonds_.i[b], bonds_.j[b]) >= w.particle_end) w.crossing_bonds.push_back(q);
-    }
+    for (int b = bond_first_[w.particle_begin]; b < bond_first_[w.particle_end]; ++b)
+      if (std::max(bonds_.i[b], bonds_.j[b]) >= w.particle_end) w.crossing_bonds.push_back(b);
     w.crossing_bond_results.resize(w.crossing_bonds.size());
     w.broken_crossing_bonds.reserve(w.crossing_bonds.size());
     // A bond breaks at most once per step and each is evaluated by one thread: with room for
@@ -490,9 +486,8 @@ void Engine::pair_forces(ContactModel<Law>& model, Totals& totals) {
             [&](auto& bonds) {
               using BondLaw = std::decay_t<decltype(bonds.law)>;
               for (std::size_t c = 0; c < work.crossing_bonds.size(); ++c)
-                bond_contribution<BondLaw, Measure>(
-                    bonds, static_cast<std::size_t>(bond_order_[static_cast<std::size_t>(work.crossing_bonds[c])]),
-                    work.crossing_bond_results[c], work, true);
+                bond_contribution<BondLaw, Measure>(bonds, static_cast<std::size_t>(work.crossing_bonds[c]),
+                                                    work.crossing_bond_results[c], work, true);
             },
             bond_model_);
 #pragma omp barrier
@@ -560,7 +555,7 @@ void Engine::pair_forces(ContactModel<Law>& model, Totals& totals) {
             std::size_t crossing_bonds_seen = 0;
             Contribution c;
             for (int q = bond_first_[begin]; q < bond_first_[end]; ++q) {
-              const auto b = static_cast<std::size_t>(bond_order_[static_cast<std::size_t>(q)]);
+              const auto b = static_cast<std::size_t>(q);
               const int bond_owner = std::min(bonds_.i[b], bonds_.j[b]);
               if (std::max(bonds_.i[b], bonds_.j[b]) >= end) {
                 add_to_owner(bond_owner, work.crossing_bond_results[crossing_bonds_seen++]);
@@ -603,7 +598,8 @@ void Engine::pair_forces(ContactModel<Law>& model, Totals& totals) {
     for (const int b : work.failed_bonds) {
       const auto bond = static_cast<std::size_t>(b);
       const Vec3& xi = particles_.position[static_cast<std::size_t>(bonds_.i[bond])];
-      breaks_.push_back(BondBreak{bond, time_, packing_.box.wrap(xi + 0.5 * bond_vector(bond))});
+      breaks_.push_back(BondBreak{static_cast<std::size_t>(bond_input_index_[bond]), time_,
+                                  packing_.box.wrap(xi + 0.5 * bond_vector(bond))});
     }
     if constexpr (Measure) {
       totals.contacts += work.totals.contacts;
