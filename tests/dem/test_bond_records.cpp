@@ -180,6 +180,12 @@ TEST(BondRecords, BondsAreNamedByTheirInputIndexWhateverOrderTheEngineKeepsThemI
   EXPECT_NEAR(e.bond_breaks()[1].time, t_fail, 1.5e-12);
   EXPECT_NEAR(e.bond_breaks()[2].time, 2 * t_fail, 1.5e-12);
   EXPECT_NEAR(e.bond_breaks()[2].position.y, height[2], 1e-9 * r);
+  // Each break at the bond's midpoint at the step it failed, before the particles moved on
+  // (they move in the same parallel region: dem/step.cpp): one step later it would lie
+  // v dt / 2 = 2.5e-13 to 1e-12 m (3e-5 to 1.3e-4 r) further along x.
+  const double pair_speed[3] = {speed[2], speed[0], speed[1]};  // by bond index
+  for (const BondBreak& b : e.bond_breaks())
+    EXPECT_NEAR(b.position.x, 4 * r + 0.5 * (l0 + pair_speed[b.bond] * b.time), 1e-6 * r) << "bond " << b.bond;
   ASSERT_EQ(resumed.bond_breaks().size(), 3u);
   for (std::size_t k = 0; k < 3; ++k) {
     EXPECT_EQ(resumed.bond_breaks()[k].bond, e.bond_breaks()[k].bond);

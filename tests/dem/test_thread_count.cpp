@@ -36,6 +36,7 @@ struct Outcome {
   std::vector<double> kinetic, strain, contacts, unbalanced;
   std::vector<Vec3> wall_force;
   std::vector<std::size_t> breaks;
+  std::vector<Vec3> break_position;
   double time = 0.0;
   friend bool operator==(const Outcome&, const Outcome&) = default;
 };
@@ -67,7 +68,10 @@ Outcome run(const Packing& packing, EngineConfig config, int threads, long block
   out.position = end.position;
   out.velocity = end.velocity;
   out.angular_velocity = end.angular_velocity;
-  for (const BondBreak& b : engine.bond_breaks()) out.breaks.push_back(b.bond);
+  for (const BondBreak& b : engine.bond_breaks()) {
+    out.breaks.push_back(b.bond);
+    out.break_position.push_back(b.position);
+  }
   out.time = engine.time();
   if (switches) *switches = engine.thread_switches();
   return out;
@@ -85,6 +89,7 @@ void expect_same_at_every_thread_count(const Packing& packing, EngineConfig conf
         << threads << " threads: measured energies differ";
     EXPECT_TRUE(many.wall_force == one.wall_force) << threads << " threads: wall forces differ";
     EXPECT_TRUE(many.breaks == one.breaks) << threads << " threads: bond breaks differ";
+    EXPECT_TRUE(many.break_position == one.break_position) << threads << " threads: break positions differ";
     EXPECT_EQ(many.time, one.time) << threads << " threads";
   }
 }
@@ -132,6 +137,24 @@ TEST(ThreadCount, BreakingBondsBetweenMovingWallsAreTheSameBitForBit) {
       BondMaterialList<ElasticBond>{{.youngs_modulus = 2e3, .normal_strength = 40.0, .shear_strength = 40.0}};
   const Outcome one = run(p, config, 1, 5, 80, true);
   ASSERT_GT(one.breaks.size(), 0u) << "the case must break bonds to test their order";
+  expect_same_at_every_thread_count(p, config, 5, 80, true);
+}
+
+// At a fixed time step an unmeasured step integrates inside the force region, each thread its
+// own particles as soon as it is done with them (dem/step.cpp): the same case as above with
+// the global rule, where the break positions must still be those before the particles moved.
+TEST(ThreadCount, BreakingBondsBetweenMovingWallsAtAFixedTimeStepAreTheSameBitForBit) {
+  Packing p = dense_random(1000, 0.60, 9, false);
+  generate::BondingOptions bonding;
+  bonding.cutoff_ratio = 1.2;
+  generate::add_bonds(p, bonding);
+  EngineConfig config;
+  config.types = {Material{1000.0, 100.0, 0.3, 1000.0, 0.3}};
+  config.time_step_rule = TimeStepRule::global;
+  config.bond_materials =
+      BondMaterialList<ElasticBond>{{.youngs_modulus = 2e3, .normal_strength = 40.0, .shear_strength = 40.0}};
+  const Outcome one = run(p, config, 1, 5, 80, true);
+  ASSERT_GT(one.breaks.size(), 0u) << "the case must break bonds to test their order and positions";
   expect_same_at_every_thread_count(p, config, 5, 80, true);
 }
 

@@ -304,6 +304,11 @@ class Engine {
     // Bonds that failed this step (their BondBreak is filled after the force loop: 4 bytes of
     // room per bond of the range instead of a whole BondBreak).
     std::vector<int> failed_bonds;
+    // Where each failed bond broke (its midpoint), taken when it failed: with the integration
+    // in the force region (pair_forces) the particles move before the region ends. Grows to
+    // the most breaks a step has had; a failed allocation is reported after the region.
+    std::vector<Vec3> failed_positions;
+    bool failed_positions_full = false;
     // Crossing bonds that broke this step, whose listed pair is unflagged after the barrier:
     // before it, other threads may be evaluating that pair, which must still see it bonded
     // (as with one thread). Room for every crossing bond (partition_work).
@@ -315,10 +320,14 @@ class Engine {
   };
   template <bool Measure>
   Totals step_impl();
-  template <class Law, bool Measure, bool SumRule>
+  // Integrate: each thread also advances its own particles at the end of the force region
+  // (unmeasured steps at a fixed time step: one parallel region per step instead of two).
+  template <class Law, bool Measure, bool SumRule, bool Integrate>
   void pair_forces(ContactModel<Law>& model, Totals& totals);
   template <bool Measure>
   void integrate(Totals& totals);
+  // Advances particles [begin, end) by one step from their forces (unmeasured steps).
+  void advance_particles(int begin, int end);
   void refresh_neighbors();
   // adapt_threads: probes and switches between one thread and the configured count before a
   // step (dem/step.cpp).
@@ -328,7 +337,8 @@ class Engine {
   // Splits particles, pairs and bonds among the threads (after every neighbour rebuild and
   // every change of the thread count).
   void partition_work();
-  template <class Law, bool OneType, bool Indirect>
+  // Guarded: the crossing pairs' particles j may be moving (another thread integrating them).
+  template <class Law, bool OneType, bool Indirect, bool Guarded>
   void gather_pairs(ContactModel<Law>& model, const int* pairs, const int* owners, int start, int count, int skip_from,
                     const std::uint8_t* crossing_acts, int& crossing_seen, PairBlock<Law>& block);
   template <class Law, bool OneType, bool Measure>

@@ -28,6 +28,7 @@
 #include <climits>
 #include <cmath>
 #include <limits>
+#include <new>
 #include <string>
 
 #include "packlab/core/error.hpp"
@@ -178,7 +179,7 @@ struct PairBlock {
 // whose j >= skip_from were evaluated before (crossing pairs): their history is left alone
 // and they are listed, flagged, only if they acted, so that their kept result is added at
 // their place in the order.
-template <class Law, bool OneType, bool Indirect>
+template <class Law, bool OneType, bool Indirect, bool Guarded>
 void Engine::gather_pairs(ContactModel<Law>& model, const int* pairs, const int* owners, int start, int count,
                           int skip_from, const std::uint8_t* crossing_acts, int& crossing_seen, PairBlock<Law>& block) {
   const Vec3* __restrict x = particles_.position.data();
@@ -203,12 +204,18 @@ void Engine::gather_pairs(ContactModel<Law>& model, const int* pairs, const int*
   for (int k = 0; k < count; ++k) {
     const int p = Indirect ? pairs[start + k] : start + k;
     const int i = owner[k], j = partner[p];
-    const Vec3 d = x[j] + offsets[image[p]] - x[i];
-    const double dist2 = norm2(d);
-    const double ri = rad[i], rj = rad[j];
-    const double reach = OneType ? Law::reach(params[0]) : Law::reach(params[type[i] * type_count + type[j]]);
-    const double cutoff = ri + rj + reach;  // r_i + r_j for laws acting on overlap only
     const bool before = j >= skip_from;
+    // Guarded: a crossing pair's j belongs to a later thread, which may already be moving it
+    // (the integration in the force region), so its state is not read. Its entry's evaluation
+    // is discarded (the kept result is added) and sees a separated pair, 4 r_i along x, so
+    // that it stays finite. (Unguarded this costs 2 % at one thread: a template choice.)
+    const int j_read = Guarded && before ? i : j;
+    const Vec3 listed = x[j_read] + offsets[image[p]] - x[i];
+    const Vec3 d = Guarded && before ? Vec3{4.0 * rad[i], 0.0, 0.0} : listed;
+    const double dist2 = norm2(d);
+    const double ri = rad[i], rj = rad[j_read];
+    const double reach = OneType ? Law::reach(params[0]) : Law::reach(params[type[i] * type_count + type[j_read]]);
+    const double cutoff = ri + rj + reach;  // r_i + r_j for laws acting on overlap only
     // A crossing pair's flag is read only for crossing pairs (crossing_seen counts them).
     const bool acted_before = before && crossing_acts[before ? crossing_seen : 0];
     crossing_seen += before;
@@ -238,7 +245,7 @@ void Engine::gather_pairs(ContactModel<Law>& model, const int* pairs, const int*
   }
   // Pass 2, over the acting pairs: the rest of what the law reads.
   for (int c = 0; c < m; ++c) {
-    const int i = block.owner[c], j = block.other[c];
+    const int i = block.owner[c], j = Guarded && block.evaluated_before[c] ? i : block.other[c];
     block.inverse_mass_i[c] = inverse_mass[i];
     block.inverse_mass_j[c] = inverse_mass[j];
     block.vix[c] = v[i].x;
@@ -334,6 +341,12 @@ void Engine::bond_contribution(BondModel<BondLaw>& model, std::size_t b, Contrib
   if (f.failed) {
     ++work.totals.bond_breaks;
     work.failed_bonds.push_back(static_cast<int>(b));
+    // The bond's midpoint now, before any particle moves (wrapped into the box after the region).
+    try {
+      work.failed_positions.push_back(P.position[static_cast<std::size_t>(i)] + 0.5 * d);
+    } catch (...) {
+      work.failed_positions_full = true;  // nothing may leave the parallel region
+    }
   }
   if (f.broken) {
     bonds_.state[b] = 1;
@@ -361,8 +374,9 @@ void Engine::bond_contribution(BondModel<BondLaw>& model, std::size_t b, Contrib
   }
 }
 
-template <class Law, bool Measure, bool SumRule>
+template <class Law, bool Measure, bool SumRule, bool Integrate>
 void Engine::pair_forces(ContactModel<Law>& model, Totals& totals) {
+  static_assert(!(Integrate && (Measure || SumRule)), "measured steps and the stiffness_sum rule integrate after");
   const int n = static_cast<int>(particles_.size());
   const int T = threads_;
   const bool any_bonds = !bonds_.i.empty();
@@ -413,6 +427,8 @@ void Engine::pair_forces(ContactModel<Law>& model, Totals& totals) {
     ThreadWork& work = work_[static_cast<std::size_t>(t)];
     work.totals = Totals{};
     work.failed_bonds.clear();
+    work.failed_positions.clear();
+    work.failed_positions_full = false;
     work.broken_crossing_bonds.clear();
     Totals& local = work.totals;
     PairBlock<Law> block;
@@ -420,14 +436,15 @@ void Engine::pair_forces(ContactModel<Law>& model, Totals& totals) {
     const std::uint8_t* crossing_acts = work.crossing_pair_acts.empty() ? &no_crossing : work.crossing_pair_acts.data();
     int crossing_seen = 0;
     // Gathers and evaluates one block of listed pairs.
-    auto run_block = [&]<bool Indirect>(const int* list, const int* owners, int start, int count, int skip_from) {
+    auto run_block = [&]<bool Indirect, bool Guarded>(const int* list, const int* owners, int start, int count,
+                                                      int skip_from) {
       if (one_type) {
-        gather_pairs<Law, true, Indirect>(model, list, owners, start, count, skip_from, crossing_acts, crossing_seen,
-                                          block);
+        gather_pairs<Law, true, Indirect, Guarded>(model, list, owners, start, count, skip_from, crossing_acts,
+                                                   crossing_seen, block);
         contact_block<Law, true, Measure>(model, block);
       } else {
-        gather_pairs<Law, false, Indirect>(model, list, owners, start, count, skip_from, crossing_acts, crossing_seen,
-                                           block);
+        gather_pairs<Law, false, Indirect, Guarded>(model, list, owners, start, count, skip_from, crossing_acts,
+                                                    crossing_seen, block);
         contact_block<Law, false, Measure>(model, block);
       }
       for (int c = 0; c < block.count; ++c)
@@ -469,8 +486,8 @@ void Engine::pair_forces(ContactModel<Law>& model, Totals& totals) {
         std::fill(owner_work.crossing_pair_acts.begin() + from, owner_work.crossing_pair_acts.begin() + to, 0);
         for (int s0 = from; s0 < to; s0 += capacity) {
           const int count = std::min(capacity, to - s0);
-          run_block.template operator()<true>(owner_work.crossing_pairs.data(), owner_work.crossing_pair_owners.data(),
-                                              s0, count, INT_MAX);
+          run_block.template operator()<true, false>(owner_work.crossing_pairs.data(),
+                                                     owner_work.crossing_pair_owners.data(), s0, count, INT_MAX);
           // The acting ones, in list order: find each one's place among the crossing pairs.
           int k = s0;
           for (int c = 0; c < block.count; ++c) {
@@ -520,7 +537,11 @@ void Engine::pair_forces(ContactModel<Law>& model, Totals& totals) {
         while (first[owner_now + 1] <= p0 + k) ++owner_now;
         block_owner[k] = owner_now;
       }
-      run_block.template operator()<false>(nullptr, block_owner, p0, count, end);
+      // Guarded only where another thread may be moving this range's crossing partners.
+      if (Integrate && end < n)
+        run_block.template operator()<false, Integrate>(nullptr, block_owner, p0, count, end);
+      else
+        run_block.template operator()<false, false>(nullptr, block_owner, p0, count, end);
       for (int c = 0; c < block.count; ++c) {
         const int i = block.owner[c], j = block.other[c];
         if (block.evaluated_before[c]) {
@@ -585,6 +606,11 @@ void Engine::pair_forces(ContactModel<Law>& model, Totals& totals) {
       for (int k = begin; k < end; ++k) largest = std::max(largest, stiffness[k] * inverse_mass[k]);
       local.max_stiffness_over_mass = largest;
     }
+
+    // 5. This thread's particles move. No other thread reads them any more in this step: after
+    // the barrier each thread reads only its own particles, the kept results of the crossing
+    // pairs and bonds, and (walls) what the wall loop's closing barrier has finished.
+    if constexpr (Integrate) advance_particles(begin, end);
   }
 
   // Order-independent reductions (max, counts) over threads; sums in particle order.
@@ -593,14 +619,12 @@ void Engine::pair_forces(ContactModel<Law>& model, Totals& totals) {
     const ThreadWork& work = work_[static_cast<std::size_t>(t)];
     totals.max_stiffness_over_mass = std::max(totals.max_stiffness_over_mass, work.totals.max_stiffness_over_mass);
     totals.bond_breaks += work.totals.bond_breaks;
-    // Where each failed: the middle of the bond, from the positions of this step's force
-    // evaluation (the particles move only in integrate()).
-    for (const int b : work.failed_bonds) {
-      const auto bond = static_cast<std::size_t>(b);
-      const Vec3& xi = particles_.position[static_cast<std::size_t>(bonds_.i[bond])];
-      breaks_.push_back(BondBreak{static_cast<std::size_t>(bond_input_index_[bond]), time_,
-                                  packing_.box.wrap(xi + 0.5 * bond_vector(bond))});
-    }
+    // Where each failed: the middle of the bond at this step's force evaluation.
+    if (work.failed_positions_full) throw std::bad_alloc();
+    for (std::size_t k = 0; k < work.failed_bonds.size(); ++k)
+      breaks_.push_back(
+          BondBreak{static_cast<std::size_t>(bond_input_index_[static_cast<std::size_t>(work.failed_bonds[k])]), time_,
+                    packing_.box.wrap(work.failed_positions[k])});
     if constexpr (Measure) {
       totals.contacts += work.totals.contacts;
       totals.max_overlap_ratio = std::max(totals.max_overlap_ratio, work.totals.max_overlap_ratio);
@@ -667,63 +691,75 @@ double Engine::wall_forces(ContactModel<Law>& model, double* stiffness, double* 
   return max_stiffness_over_mass;
 }
 
+void Engine::advance_particles(int begin, int end) {
+  const double dt = dt_;
+  auto& P = particles_;
+  const double* __restrict damping = type_damping_.data();
+  const int* __restrict type = P.type.data();
+  for (int i = begin; i < end; ++i) {
+    // Fixed particles have zero inverse mass and inertia: they keep zero velocity without a
+    // branch, so the loop vectorizes.
+    const double alpha = damping[type[i]];
+    const Vec3 f = apply_local_damping(P.force[i], P.velocity[i], alpha);
+    const Vec3 m = apply_local_damping(P.torque[i], P.angular_velocity[i], alpha);
+    P.velocity[i] += (P.inverse_mass[i] * dt) * f;
+    P.angular_velocity[i] += (P.inverse_inertia[i] * dt) * m;
+    P.position[i] += dt * P.velocity[i];
+  }
+}
+
 template <bool Measure>
 void Engine::integrate(Totals& totals) {
   const int n = static_cast<int>(particles_.size());
+  if constexpr (!Measure) {
+    // Each thread integrates the particles whose forces it summed, which are in its cache
+    // (fixed chunks made 2 threads' integration cost 5x one thread's CPU time in the shear
+    // benchmark, its 3 chunks split 2 : 1).
+#pragma omp parallel for num_threads(threads_) schedule(static)
+    for (int t = 0; t < threads_; ++t)
+      advance_particles(work_[static_cast<std::size_t>(t)].particle_begin,
+                        work_[static_cast<std::size_t>(t)].particle_end);
+    return;
+  }
   const double dt = dt_;
   auto& P = particles_;
   const int chunks = chunk_count(n);
-  if constexpr (Measure) chunk_sums_.assign(3 * static_cast<std::size_t>(chunks), 0.0);
+  chunk_sums_.assign(3 * static_cast<std::size_t>(chunks), 0.0);
   const double* __restrict damping = type_damping_.data();
   const int* __restrict type = P.type.data();
-  // Unmeasured steps: each thread integrates the particles whose forces it summed, which are in
-  // its cache (fixed chunks made 2 threads' integration cost 5x one thread's CPU time in the
-  // shear benchmark, its 3 chunks split 2 : 1). Measured ones: fixed chunks, whose sums are the
-  // same at any thread count.
-  const int pieces = Measure ? chunks : threads_;
+  // Measured steps: fixed chunks, whose sums are the same at any thread count.
 #pragma omp parallel for num_threads(threads_) schedule(static)
-  for (int c = 0; c < pieces; ++c) {
+  for (int c = 0; c < chunks; ++c) {
     double kinetic = 0.0, unbalanced = 0.0, free_count = 0.0;
-    const auto& range = work_[static_cast<std::size_t>(Measure ? 0 : c)];
-    const int piece_begin = Measure ? c * chunk_size : range.particle_begin;
-    const int piece_end = Measure ? std::min(n, (c + 1) * chunk_size) : range.particle_end;
-    for (int i = piece_begin; i < piece_end; ++i) {
-      // Fixed particles have zero inverse mass and inertia: they keep zero velocity without a
-      // branch, so the loop vectorizes.
+    for (int i = c * chunk_size; i < std::min(n, (c + 1) * chunk_size); ++i) {
       const double alpha = damping[type[i]];
       const Vec3 f = apply_local_damping(P.force[i], P.velocity[i], alpha);
       const Vec3 m = apply_local_damping(P.torque[i], P.angular_velocity[i], alpha);
       const Vec3 dv = (P.inverse_mass[i] * dt) * f;
       const Vec3 dw = (P.inverse_inertia[i] * dt) * m;
-      if constexpr (Measure) {
-        if (!P.fixed[i]) {
-          const Vec3 v_sync = P.velocity[i] + 0.5 * dv;
-          const Vec3 w_sync = P.angular_velocity[i] + 0.5 * dw;
-          kinetic += 0.5 * (P.mass[i] * norm2(v_sync) + sphere_inertia(P.mass[i], P.radius[i]) * norm2(w_sync));
-          unbalanced += norm(P.force[i]);
-          free_count += 1.0;
-        }
+      if (!P.fixed[i]) {
+        const Vec3 v_sync = P.velocity[i] + 0.5 * dv;
+        const Vec3 w_sync = P.angular_velocity[i] + 0.5 * dw;
+        kinetic += 0.5 * (P.mass[i] * norm2(v_sync) + sphere_inertia(P.mass[i], P.radius[i]) * norm2(w_sync));
+        unbalanced += norm(P.force[i]);
+        free_count += 1.0;
       }
       P.velocity[i] += dv;
       P.angular_velocity[i] += dw;
       P.position[i] += dt * P.velocity[i];
     }
-    if constexpr (Measure) {
-      chunk_sums_[3 * static_cast<std::size_t>(c)] = kinetic;
-      chunk_sums_[3 * static_cast<std::size_t>(c) + 1] = unbalanced;
-      chunk_sums_[3 * static_cast<std::size_t>(c) + 2] = free_count;
-    }
+    chunk_sums_[3 * static_cast<std::size_t>(c)] = kinetic;
+    chunk_sums_[3 * static_cast<std::size_t>(c) + 1] = unbalanced;
+    chunk_sums_[3 * static_cast<std::size_t>(c) + 2] = free_count;
   }
-  if constexpr (Measure) {
-    // Chunk sums in chunk order: the same at any thread count.
-    double free_count = 0.0;
-    for (int c = 0; c < chunks; ++c) {
-      totals.kinetic_energy += chunk_sums_[3 * static_cast<std::size_t>(c)];
-      totals.unbalanced_force_sum += chunk_sums_[3 * static_cast<std::size_t>(c) + 1];
-      free_count += chunk_sums_[3 * static_cast<std::size_t>(c) + 2];
-    }
-    totals.free_particles = static_cast<std::size_t>(free_count);
+  // Chunk sums in chunk order: the same at any thread count.
+  double free_count = 0.0;
+  for (int c = 0; c < chunks; ++c) {
+    totals.kinetic_energy += chunk_sums_[3 * static_cast<std::size_t>(c)];
+    totals.unbalanced_force_sum += chunk_sums_[3 * static_cast<std::size_t>(c) + 1];
+    free_count += chunk_sums_[3 * static_cast<std::size_t>(c) + 2];
   }
+  totals.free_particles = static_cast<std::size_t>(free_count);
 }
 
 void Engine::set_active_threads(int threads) {
@@ -802,21 +838,26 @@ Engine::Totals Engine::step_impl() {
   tune_threads();
   if (neighbors_.needs_rebuild(particles_.position, particles_.radius)) refresh_neighbors();
   Totals totals;
+  // With a time step that does not depend on this step's forces, an unmeasured step
+  // integrates inside the force region (one fork and join of the threads fewer per step).
+  const bool step_from_forces = config_.time_step <= 0.0 && config_.time_step_rule != TimeStepRule::global;
   std::visit(
       [&](auto& model) {
         using Law = std::decay_t<decltype(model.law)>;
         if (config_.time_step <= 0.0 && config_.time_step_rule == TimeStepRule::stiffness_sum)
-          pair_forces<Law, Measure, true>(model, totals);
-        else
-          pair_forces<Law, Measure, false>(model, totals);
+          pair_forces<Law, Measure, true, false>(model, totals);
+        else if (Measure || step_from_forces)
+          pair_forces<Law, Measure, false, false>(model, totals);
+        else if constexpr (!Measure)
+          pair_forces<Law, false, false, true>(model, totals);
       },
       model_);
-  if (config_.time_step <= 0.0 && config_.time_step_rule != TimeStepRule::global) {
+  if (step_from_forces) {
     dt_ = totals.max_stiffness_over_mass > 0.0
               ? std::min(time_step_cap_, config_.time_step_safety / std::sqrt(totals.max_stiffness_over_mass))
               : time_step_cap_;
   }
-  integrate<Measure>(totals);
+  if (Measure || step_from_forces) integrate<Measure>(totals);
   for (auto& wall : walls_) wall.point += dt_ * wall.velocity;
   ++step_;
   time_ += dt_;
