@@ -94,6 +94,25 @@ void expect_same_at_every_thread_count(const Packing& packing, EngineConfig conf
   }
 }
 
+// An open bonded block (1,000 particles, bonds within 1.2 diameters) and an elastic bond law
+// whose bonds break when two walls squeeze it (run(..., with_walls = true)).
+Packing bonded_block() {
+  Packing p = dense_random(1000, 0.60, 9, false);
+  generate::BondingOptions bonding;
+  bonding.cutoff_ratio = 1.2;
+  generate::add_bonds(p, bonding);
+  return p;
+}
+
+EngineConfig bonded_block_config(TimeStepRule rule) {
+  EngineConfig config;
+  config.types = {Material{1000.0, 100.0, 0.3, 1000.0, 0.3}};
+  config.time_step_rule = rule;
+  config.bond_materials =
+      BondMaterialList<ElasticBond>{{.youngs_modulus = 2e3, .normal_strength = 40.0, .shear_strength = 40.0}};
+  return config;
+}
+
 }  // namespace
 
 TEST(ThreadCount, PairContactsInAPeriodicBoxAreTheSameBitForBit) {
@@ -125,16 +144,9 @@ TEST(ThreadCount, BreakingBondsBetweenMovingWallsAreTheSameBitForBit) {
   // An open bonded block squeezed between two walls (the top one moving down) with the
   // stiffness-sum time-step rule: bonds cross thread ranges, some break, walls touch
   // particles of every range.
-  Packing p = dense_random(1000, 0.60, 9, false);
-  generate::BondingOptions bonding;
-  bonding.cutoff_ratio = 1.2;
-  generate::add_bonds(p, bonding);
+  const Packing p = bonded_block();
   ASSERT_GT(p.bonds.size(), 1000u);
-  EngineConfig config;
-  config.types = {Material{1000.0, 100.0, 0.3, 1000.0, 0.3}};
-  config.time_step_rule = TimeStepRule::stiffness_sum;
-  config.bond_materials =
-      BondMaterialList<ElasticBond>{{.youngs_modulus = 2e3, .normal_strength = 40.0, .shear_strength = 40.0}};
+  EngineConfig config = bonded_block_config(TimeStepRule::stiffness_sum);
   const Outcome one = run(p, config, 1, 5, 80, true);
   ASSERT_GT(one.breaks.size(), 0u) << "the case must break bonds to test their order";
   expect_same_at_every_thread_count(p, config, 5, 80, true);
@@ -144,15 +156,8 @@ TEST(ThreadCount, BreakingBondsBetweenMovingWallsAreTheSameBitForBit) {
 // own particles as soon as it is done with them (dem/step.cpp): the same case as above with
 // the global rule, where the break positions must still be those before the particles moved.
 TEST(ThreadCount, BreakingBondsBetweenMovingWallsAtAFixedTimeStepAreTheSameBitForBit) {
-  Packing p = dense_random(1000, 0.60, 9, false);
-  generate::BondingOptions bonding;
-  bonding.cutoff_ratio = 1.2;
-  generate::add_bonds(p, bonding);
-  EngineConfig config;
-  config.types = {Material{1000.0, 100.0, 0.3, 1000.0, 0.3}};
-  config.time_step_rule = TimeStepRule::global;
-  config.bond_materials =
-      BondMaterialList<ElasticBond>{{.youngs_modulus = 2e3, .normal_strength = 40.0, .shear_strength = 40.0}};
+  const Packing p = bonded_block();
+  EngineConfig config = bonded_block_config(TimeStepRule::global);
   const Outcome one = run(p, config, 1, 5, 80, true);
   ASSERT_GT(one.breaks.size(), 0u) << "the case must break bonds to test their order and positions";
   expect_same_at_every_thread_count(p, config, 5, 80, true);
@@ -162,15 +167,8 @@ TEST(ThreadCount, BreakingBondsBetweenMovingWallsAtAFixedTimeStepAreTheSameBitFo
 // whichever was faster) switches its thread count many times and still gives the bits of a
 // single-thread run, bonds breaking and walls moving included.
 TEST(ThreadCount, SwitchingBetweenOneAndSeveralThreadsMidRunChangesNoBit) {
-  Packing p = dense_random(1000, 0.60, 9, false);
-  generate::BondingOptions bonding;
-  bonding.cutoff_ratio = 1.2;
-  generate::add_bonds(p, bonding);
-  EngineConfig config;
-  config.types = {Material{1000.0, 100.0, 0.3, 1000.0, 0.3}};
-  config.time_step_rule = TimeStepRule::stiffness_sum;
-  config.bond_materials =
-      BondMaterialList<ElasticBond>{{.youngs_modulus = 2e3, .normal_strength = 40.0, .shear_strength = 40.0}};
+  const Packing p = bonded_block();
+  EngineConfig config = bonded_block_config(TimeStepRule::stiffness_sum);
   config.adapt_threads = false;
   const Outcome one = run(p, config, 1, 5, 80, true);
   ASSERT_GT(one.breaks.size(), 0u);
