@@ -339,7 +339,7 @@ EngineMemory Engine::memory() const {
             heap_bytes(breaks_);
   std::visit([&](const auto& model) { m.bonds += heap_bytes(model.history); }, bond_model_);
   for (const ThreadWork& w : work_) {
-    m.bonds += heap_bytes(w.failed_bonds);
+    m.bonds += heap_bytes(w.failed_bonds) + heap_bytes(w.failed_positions);
     m.threads += heap_bytes(w.crossing_pairs) + heap_bytes(w.crossing_pair_owners) +
                  heap_bytes(w.crossing_pair_results) + heap_bytes(w.crossing_pair_acts) + heap_bytes(w.crossing_bonds) +
                  heap_bytes(w.crossing_bond_results);

@@ -321,13 +321,16 @@ class Engine {
   template <bool Measure>
   Totals step_impl();
   // Integrate: each thread also advances its own particles at the end of the force region
-  // (unmeasured steps at a fixed time step: one parallel region per step instead of two).
+  // (unmeasured steps: one parallel region per step instead of two).
   template <class Law, bool Measure, bool SumRule, bool Integrate>
   void pair_forces(ContactModel<Law>& model, Totals& totals);
-  template <bool Measure>
-  void integrate(Totals& totals);
-  // Advances particles [begin, end) by one step from their forces (unmeasured steps).
-  void advance_particles(int begin, int end);
+  // Measured steps: integration over fixed chunks with the kinetic energy and force sums.
+  void integrate_measured(Totals& totals);
+  // Advances particles [begin, end) by one step dt from their forces.
+  void advance_particles(int begin, int end, double dt);
+  // The contacts and stiffness_sum rules: the time step follows this step's forces.
+  bool step_from_forces() const;
+  double time_step_from_stiffness(double max_stiffness_over_mass) const;
   void refresh_neighbors();
   // adapt_threads: probes and switches between one thread and the configured count before a
   // step (dem/step.cpp).

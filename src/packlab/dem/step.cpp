@@ -376,7 +376,8 @@ void Engine::bond_contribution(BondModel<BondLaw>& model, std::size_t b, Contrib
 
 template <class Law, bool Measure, bool SumRule, bool Integrate>
 void Engine::pair_forces(ContactModel<Law>& model, Totals& totals) {
-  static_assert(!(Integrate && (Measure || SumRule)), "measured steps and the stiffness_sum rule integrate after");
+  static_assert(!(Integrate && Measure), "measured steps integrate after the force region");
+  const bool step_from_forces = this->step_from_forces();
   const int n = static_cast<int>(particles_.size());
   const int T = threads_;
   const bool any_bonds = !bonds_.i.empty();
@@ -607,10 +608,25 @@ void Engine::pair_forces(ContactModel<Law>& model, Totals& totals) {
       local.max_stiffness_over_mass = largest;
     }
 
-    // 5. This thread's particles move. No other thread reads them any more in this step: after
-    // the barrier each thread reads only its own particles, the kept results of the crossing
-    // pairs and bonds, and (walls) what the wall loop's closing barrier has finished.
-    if constexpr (Integrate) advance_particles(begin, end);
+    // 5. This thread's particles move, while their forces are in its cache (fixed chunks made
+    // two threads' integration cost 5x one thread's CPU time in the shear benchmark, its 3
+    // chunks split 2 : 1; a second region cost a fork). No other thread reads them any more in
+    // this step: after the barrier each thread reads only its own particles, the kept results
+    // of the crossing pairs and bonds, and (walls) what the wall loop's closing barrier has
+    // finished. A time step taken from this step's forces needs every thread's largest
+    // stiffness over mass first: one barrier, then each thread finds the same step (a max does
+    // not depend on the order) that step_impl stores after the region.
+    if constexpr (Integrate) {
+      double dt = dt_;
+      if (step_from_forces) {
+#pragma omp barrier
+        double largest = 0.0;
+        for (int s = 0; s < T; ++s)
+          largest = std::max(largest, work_[static_cast<std::size_t>(s)].totals.max_stiffness_over_mass);
+        dt = time_step_from_stiffness(largest);
+      }
+      advance_particles(begin, end, dt);
+    }
   }
 
   // Order-independent reductions (max, counts) over threads; sums in particle order.
@@ -691,8 +707,7 @@ double Engine::wall_forces(ContactModel<Law>& model, double* stiffness, double* 
   return max_stiffness_over_mass;
 }
 
-void Engine::advance_particles(int begin, int end) {
-  const double dt = dt_;
+void Engine::advance_particles(int begin, int end, double dt) {
   auto& P = particles_;
   const double* __restrict damping = type_damping_.data();
   const int* __restrict type = P.type.data();
@@ -708,26 +723,15 @@ void Engine::advance_particles(int begin, int end) {
   }
 }
 
-template <bool Measure>
-void Engine::integrate(Totals& totals) {
+void Engine::integrate_measured(Totals& totals) {
   const int n = static_cast<int>(particles_.size());
-  if constexpr (!Measure) {
-    // Each thread integrates the particles whose forces it summed, which are in its cache
-    // (fixed chunks made 2 threads' integration cost 5x one thread's CPU time in the shear
-    // benchmark, its 3 chunks split 2 : 1).
-#pragma omp parallel for num_threads(threads_) schedule(static)
-    for (int t = 0; t < threads_; ++t)
-      advance_particles(work_[static_cast<std::size_t>(t)].particle_begin,
-                        work_[static_cast<std::size_t>(t)].particle_end);
-    return;
-  }
   const double dt = dt_;
   auto& P = particles_;
   const int chunks = chunk_count(n);
   chunk_sums_.assign(3 * static_cast<std::size_t>(chunks), 0.0);
   const double* __restrict damping = type_damping_.data();
   const int* __restrict type = P.type.data();
-  // Measured steps: fixed chunks, whose sums are the same at any thread count.
+  // Fixed chunks, whose sums are the same at any thread count.
 #pragma omp parallel for num_threads(threads_) schedule(static)
   for (int c = 0; c < chunks; ++c) {
     double kinetic = 0.0, unbalanced = 0.0, free_count = 0.0;
@@ -760,6 +764,16 @@ void Engine::integrate(Totals& totals) {
     free_count += chunk_sums_[3 * static_cast<std::size_t>(c) + 2];
   }
   totals.free_particles = static_cast<std::size_t>(free_count);
+}
+
+bool Engine::step_from_forces() const {
+  return config_.time_step <= 0.0 && config_.time_step_rule != TimeStepRule::global;
+}
+
+double Engine::time_step_from_stiffness(double max_stiffness_over_mass) const {
+  return max_stiffness_over_mass > 0.0
+             ? std::min(time_step_cap_, config_.time_step_safety / std::sqrt(max_stiffness_over_mass))
+             : time_step_cap_;
 }
 
 void Engine::set_active_threads(int threads) {
@@ -838,26 +852,20 @@ Engine::Totals Engine::step_impl() {
   tune_threads();
   if (neighbors_.needs_rebuild(particles_.position, particles_.radius)) refresh_neighbors();
   Totals totals;
-  // With a time step that does not depend on this step's forces, an unmeasured step
-  // integrates inside the force region (one fork and join of the threads fewer per step).
-  const bool step_from_forces = config_.time_step <= 0.0 && config_.time_step_rule != TimeStepRule::global;
+  // An unmeasured step integrates inside the force region (one fork and join of the threads
+  // per step); a measured one after it, over the fixed chunks of its sums.
   std::visit(
       [&](auto& model) {
         using Law = std::decay_t<decltype(model.law)>;
+        constexpr bool integrate_in_region = !Measure;
         if (config_.time_step <= 0.0 && config_.time_step_rule == TimeStepRule::stiffness_sum)
-          pair_forces<Law, Measure, true, false>(model, totals);
-        else if (Measure || step_from_forces)
-          pair_forces<Law, Measure, false, false>(model, totals);
-        else if constexpr (!Measure)
-          pair_forces<Law, false, false, true>(model, totals);
+          pair_forces<Law, Measure, true, integrate_in_region>(model, totals);
+        else
+          pair_forces<Law, Measure, false, integrate_in_region>(model, totals);
       },
       model_);
-  if (step_from_forces) {
-    dt_ = totals.max_stiffness_over_mass > 0.0
-              ? std::min(time_step_cap_, config_.time_step_safety / std::sqrt(totals.max_stiffness_over_mass))
-              : time_step_cap_;
-  }
-  if (Measure || step_from_forces) integrate<Measure>(totals);
+  if (step_from_forces()) dt_ = time_step_from_stiffness(totals.max_stiffness_over_mass);
+  if constexpr (Measure) integrate_measured(totals);
   for (auto& wall : walls_) wall.point += dt_ * wall.velocity;
   ++step_;
   time_ += dt_;
