@@ -1,8 +1,8 @@
 #!/usr/bin/env bash
 # Two builds side by side on the thread-scaling cases of bench/run.sh (issue #14): relax,
-# bonded compression (the 3,400-particle opal) and shear, each at 2 threads fixed for both
-# builds and at 1 thread for the second, ROUNDS times alternating (this VM's rates move from one
-# minute to the next: compare medians of alternating runs, never two single runs).
+# bonded compression (the 3,400-particle opal) and shear, each at 1 and at 2 threads fixed for
+# both builds, ROUNDS times alternating (this VM's rates move from one minute to the next:
+# compare medians of alternating runs, never two single runs).
 # usage: bench/thread_ab.sh OLD_BUILD_DIR NEW_BUILD_DIR [ROUNDS]
 # Every run waits passively (OMP_WAIT_POLICY=passive), as the packlab program does.
 set -euo pipefail
@@ -17,13 +17,12 @@ ROWS=$(mktemp); trap 'rm -f "$ROWS"' EXIT
 for _ in $(seq 1 "$ROUNDS"); do
   for build in old new; do
     dir=$OLD; [ $build = new ] && dir=$NEW
-    echo "relax $build 2 $("$dir/bench_relax" 2 3000 fixed 2>&1 | rate)"
-    echo "compress $build 2 $("$dir/bench_compress" 2 - 1 500 fixed 2>&1 | rate)"
-    echo "shear $build 2 $("$dir/bench_shear" "$SHEAR" 2 2000 1 fixed 2>&1 | rate)"
+    for threads in 1 2; do
+      echo "relax $build $threads $("$dir/bench_relax" $threads 3000 fixed 2>&1 | rate)"
+      echo "compress $build $threads $("$dir/bench_compress" $threads - 1 500 fixed 2>&1 | rate)"
+      echo "shear $build $threads $("$dir/bench_shear" "$SHEAR" $threads 2000 1 fixed 2>&1 | rate)"
+    done
   done
-  echo "relax new 1 $("$NEW/bench_relax" 1 3000 fixed 2>&1 | rate)"
-  echo "compress new 1 $("$NEW/bench_compress" 1 - 1 500 fixed 2>&1 | rate)"
-  echo "shear new 1 $("$NEW/bench_shear" "$SHEAR" 1 2000 1 fixed 2>&1 | rate)"
 done | tee "$ROWS"
 echo "# load average after: $(cut -d' ' -f1-3 /proc/loadavg)"
 echo "# medians (case build threads: median of ROUNDS runs):"
