@@ -576,8 +576,8 @@ void Engine::pair_forces(ContactModel<Law>& model, Totals& totals) {
             using BondLaw = std::decay_t<decltype(bonds.law)>;
             std::size_t crossing_bonds_seen = 0;
             Contribution c;
-            for (int q = bond_first_[begin]; q < bond_first_[end]; ++q) {
-              const auto b = static_cast<std::size_t>(q);
+            for (int bond = bond_first_[begin]; bond < bond_first_[end]; ++bond) {
+              const auto b = static_cast<std::size_t>(bond);
               const int bond_owner = std::min(bonds_.i[b], bonds_.j[b]);
               if (std::max(bonds_.i[b], bonds_.j[b]) >= end) {
                 add_to_owner(bond_owner, work.crossing_bond_results[crossing_bonds_seen++]);
@@ -735,23 +735,21 @@ void Engine::integrate_measured(Totals& totals) {
 #pragma omp parallel for num_threads(threads_) schedule(static)
   for (int c = 0; c < chunks; ++c) {
     double kinetic = 0.0, unbalanced = 0.0, free_count = 0.0;
-    for (int i = c * chunk_size; i < std::min(n, (c + 1) * chunk_size); ++i) {
+    const int chunk_begin = c * chunk_size, chunk_end = std::min(n, (c + 1) * chunk_size);
+    // The sums from the state before the update (the synchronous velocity of the kinetic
+    // energy is half a step on), then the same update as an unmeasured step.
+    for (int i = chunk_begin; i < chunk_end; ++i) {
+      if (P.fixed[i]) continue;
       const double alpha = damping[type[i]];
       const Vec3 f = apply_local_damping(P.force[i], P.velocity[i], alpha);
       const Vec3 m = apply_local_damping(P.torque[i], P.angular_velocity[i], alpha);
-      const Vec3 dv = (P.inverse_mass[i] * dt) * f;
-      const Vec3 dw = (P.inverse_inertia[i] * dt) * m;
-      if (!P.fixed[i]) {
-        const Vec3 v_sync = P.velocity[i] + 0.5 * dv;
-        const Vec3 w_sync = P.angular_velocity[i] + 0.5 * dw;
-        kinetic += 0.5 * (P.mass[i] * norm2(v_sync) + sphere_inertia(P.mass[i], P.radius[i]) * norm2(w_sync));
-        unbalanced += norm(P.force[i]);
-        free_count += 1.0;
-      }
-      P.velocity[i] += dv;
-      P.angular_velocity[i] += dw;
-      P.position[i] += dt * P.velocity[i];
+      const Vec3 v_sync = P.velocity[i] + 0.5 * ((P.inverse_mass[i] * dt) * f);
+      const Vec3 w_sync = P.angular_velocity[i] + 0.5 * ((P.inverse_inertia[i] * dt) * m);
+      kinetic += 0.5 * (P.mass[i] * norm2(v_sync) + sphere_inertia(P.mass[i], P.radius[i]) * norm2(w_sync));
+      unbalanced += norm(P.force[i]);
+      free_count += 1.0;
     }
+    advance_particles(chunk_begin, chunk_end, dt);
     chunk_sums_[3 * static_cast<std::size_t>(c)] = kinetic;
     chunk_sums_[3 * static_cast<std::size_t>(c) + 1] = unbalanced;
     chunk_sums_[3 * static_cast<std::size_t>(c) + 2] = free_count;
