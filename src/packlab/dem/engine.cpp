@@ -122,6 +122,8 @@ Engine::Engine(const Packing& packing, const EngineConfig& config) : packing_(pa
   require(config_.time_step_safety > 0.0 && config_.time_step_safety <= 1.0, "time_step_safety",
           config_.time_step_safety, "in (0, 1]");
   require(config_.skin_ratio > 0.0 && config_.skin_ratio <= 10.0, "skin_ratio", config_.skin_ratio, "in (0, 10]");
+  require(config_.near_margin_ratio >= 0.0 && config_.near_margin_ratio <= 1.0, "near_margin_ratio",
+          config_.near_margin_ratio, "in [0, 1] (0 = no near list)");
   require(config_.max_time_step >= 0.0 && std::isfinite(config_.max_time_step), "max_time_step", config_.max_time_step,
           ">= 0 s (0 = automatic)");
   // An OpenMP team of 10^5 threads crashes the runtime; no machine this runs on has more than 1024 cores.
@@ -166,6 +168,17 @@ Engine::Engine(const Packing& packing, const EngineConfig& config) : packing_(pa
       },
       model_);
   require(std::isfinite(reach) && reach <= 10.0 * r_max, "contact law reach", reach, "<= 10 times the largest radius");
+  // Torque-free: the law says so for every pair of types (walls take the pair params of the
+  // particle's type with itself), and no bond may act.
+  std::visit(
+      [&](const auto& model) {
+        using Law = std::decay_t<decltype(model.law)>;
+        if constexpr (requires(const typename Law::Params& p) { Law::torque_free(p); }) {
+          spin_free_ = packing_.bonds.size() == 0;
+          for (const auto& p : model.pair_params) spin_free_ = spin_free_ && Law::torque_free(p);
+        }
+      },
+      model_);
 
   // Bonds, mapped to the engine's particle order and stored by their owner (the smaller
   // particle index), then by their index in the input: the step walks them owner by owner, so
@@ -250,6 +263,7 @@ Engine::Engine(const Packing& packing, const EngineConfig& config) : packing_(pa
   packing_.bonds = Bonds{};
 
   neighbors_.set_skin(config_.skin_ratio * r_max);
+  near_margin_ = config_.near_margin_ratio * neighbors_.skin();
   neighbors_.set_reach(reach);
   masses_changed();
   if (config_.time_step > 0.0)
@@ -281,6 +295,7 @@ void Engine::set_radius_of_type(int type, double radius) {
       particles_.radius[k] = radius;
       update_mass(k);
     }
+  near_stale_ = true;  // pairs may reach further (dem/near_pairs.cpp)
   masses_changed();
 }
 
@@ -293,6 +308,7 @@ void Engine::set_radii(const std::vector<double>& radius) {
     particles_.radius[k] = r;
     update_mass(k);
   }
+  near_stale_ = true;  // pairs may reach further (dem/near_pairs.cpp)
   masses_changed();
 }
 
@@ -343,6 +359,7 @@ EngineMemory Engine::memory() const {
     m.threads += heap_bytes(w.crossing_pairs) + heap_bytes(w.crossing_pair_owners) +
                  heap_bytes(w.crossing_pair_results) + heap_bytes(w.crossing_pair_acts) + heap_bytes(w.crossing_bonds) +
                  heap_bytes(w.crossing_bond_results);
+    m.listed_pairs += heap_bytes(w.near_pairs) + heap_bytes(w.near_owners);  // the near list
   }
   return m;
 }

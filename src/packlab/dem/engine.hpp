@@ -68,6 +68,11 @@ struct EngineConfig {
   // (the step the heaviest particle needs), used while nothing touches.
   double max_time_step = 0.0;
   double skin_ratio = 0.2;  // Verlet skin as a fraction of the largest radius [-]
+  // The near list (dem/near_pairs.cpp): the pair loop walks only the listed pairs within the
+  // law's range plus this fraction of the skin, refreshed from the Verlet list whenever the
+  // particles may have moved that far. It changes which pairs are visited, never which act:
+  // the results are the same bit for bit. 0 = walk every listed pair. In [0, 1].
+  double near_margin_ratio = 0.05;
   // Bonds of the packing's bond list: the bond law and its parameters per bond material.
   // Required when the packing has intact bonds. E.g.
   //   config.bond_materials = BondMaterialList<ElasticBond>{{.youngs_modulus = 6.5e9}};
@@ -221,6 +226,10 @@ class Engine {
   int active_threads() const { return threads_; }     // this step's (adapt_threads)
   long thread_switches() const { return tuning_.switches; }
   long neighbor_builds() const { return neighbors_.builds(); }
+  // Refreshes of the near list, and the pairs it holds now (every listed pair when the pair
+  // loop walks them all).
+  long near_list_refreshes() const { return near_refreshes_; }
+  std::size_t near_pairs() const;
   std::size_t listed_pairs() const { return neighbors_.pair_count(); }
   EngineMemory memory() const;
   std::size_t intact_bonds() const;
@@ -270,6 +279,8 @@ class Engine {
     // particles of sum_c k_c / m_i.
     double max_stiffness_over_mass = 0.0;
     std::size_t bond_breaks = 0;  // bonds that failed this step
+    double max_speed2 = 0.0;      // largest |v|^2 after the integration (the near list's drift)
+    std::size_t bonds_removed = 0;  // bonds gone this step (their pairs may act from the next)
   };
   // Bonds in the engine's particle order, sorted by owner (bond_first_); `image` is relative to
   // the input frame (see wraps_).
@@ -316,6 +327,9 @@ class Engine {
     // The slice of all threads' crossing pairs (concatenated in thread order) that this thread
     // evaluates before the barrier.
     long crossing_slice_begin = 0, crossing_slice_end = 0;
+    // The near list's share of this range (dem/near_pairs.cpp): its listed pairs that may act
+    // before the next refresh, ascending, and their particle i.
+    std::vector<int> near_pairs, near_owners;
     Totals totals;
   };
   template <bool Measure>
@@ -326,8 +340,9 @@ class Engine {
   void pair_forces(ContactModel<Law>& model, Totals& totals);
   // Measured steps: integration over fixed chunks with the kinetic energy and force sums.
   void integrate_measured(Totals& totals);
-  // Advances particles [begin, end) by one step dt from their forces.
-  void advance_particles(int begin, int end, double dt);
+  // Advances particles [begin, end) by one step dt from their forces; returns the largest
+  // |v|^2 after the update.
+  double advance_particles(int begin, int end, double dt);
   // The contacts and stiffness_sum rules: the time step follows this step's forces.
   bool step_from_forces() const;
   double time_step_from_stiffness(double max_stiffness_over_mass) const;
@@ -340,6 +355,13 @@ class Engine {
   // Splits particles, pairs and bonds among the threads (after every neighbour rebuild and
   // every change of the thread count).
   void partition_work();
+  // Each thread's crossing pairs from the pairs it walks (every listed pair of its range, or
+  // its near list), then every thread's slice of them all.
+  void collect_crossing_pairs();
+  // The near list (dem/near_pairs.cpp): refreshed before a step when stale or when the
+  // particles may have moved half its margin since the last refresh.
+  void refresh_near_pairs();
+  bool near_list_due() const;
   // Guarded: the crossing pairs' particles j may be moving (another thread integrating them).
   template <class Law, bool OneType, bool Indirect, bool Guarded>
   void gather_pairs(ContactModel<Law>& model, const int* pairs, const int* owners, int start, int count, int skip_from,
@@ -399,11 +421,23 @@ class Engine {
   ContactModels model_;
   BondModels bond_model_;
   std::vector<ThreadWork> work_;       // per thread (dem/step.cpp)
+  // The near list (dem/near_pairs.cpp): its margin beyond the law's range [m] (0: off), whether
+  // the pair loop walks it (else every listed pair), whether it must be refreshed before the
+  // next step, and a bound on how far any particle moved since its refresh [m].
+  double near_margin_ = 0.0;
+  bool near_active_ = false, near_stale_ = true;
+  double near_drift_ = 0.0;
+  // No contact can exert a torque (a law's torque_free for every pair of types, e.g. linear
+  // contacts without friction) and there are no bonds: the integration skips the spins, which
+  // stay as they are (issue #14: the void expansion method's integration reads a third less).
+  bool spin_free_ = false;
+  long near_refreshes_ = 0;
   std::vector<double> stiffness_sum_;  // stiffness_sum rule: per particle [N/m]
   // Measured steps: per particle, the strain energy and contact force magnitudes of the
   // contacts it owns, summed in particle order afterwards (the same sums at any thread count).
   std::vector<double> measure_energy_, measure_force_;
   std::vector<double> chunk_sums_;      // per fixed-size chunk of particles
+  std::vector<double> chunk_max_speed2_;  // measured steps: per chunk, the largest |v|^2
   std::vector<Vec3> wall_chunk_force_;  // [chunk * walls + wall]
   int threads_ = 1;                     // this step's thread count
   struct ThreadTuning {

@@ -105,16 +105,6 @@ void Engine::partition_work() {
         ++i;
       }
     w.particle_end = i;
-    w.crossing_pairs.clear();
-    w.crossing_pair_owners.clear();
-    for (int owner = w.particle_begin; owner < w.particle_end; ++owner)
-      for (int p = first[owner]; p < first[owner + 1]; ++p)
-        if (partner[p] >= w.particle_end) {
-          w.crossing_pairs.push_back(p);
-          w.crossing_pair_owners.push_back(owner);
-        }
-    w.crossing_pair_results.resize(w.crossing_pairs.size());
-    w.crossing_pair_acts.resize(w.crossing_pairs.size());
     w.crossing_bonds.clear();
     w.crossing_bond_results.clear();
     if (!any_bonds) continue;
@@ -126,6 +116,38 @@ void Engine::partition_work() {
     // all of this range's bonds, recording a break never allocates, so nothing in the step's
     // parallel region can throw (an exception there, between barriers, would abort).
     w.failed_bonds.reserve(static_cast<std::size_t>(bond_first_[w.particle_end] - bond_first_[w.particle_begin]));
+  }
+  // The near list follows the new ranges (and the new list) at the next step; until then the
+  // threads walk every listed pair.
+  near_active_ = false;
+  near_stale_ = true;
+  collect_crossing_pairs();
+}
+
+void Engine::collect_crossing_pairs() {
+  const int T = threads_;
+  const auto& first = neighbors_.first_pairs();
+  const auto& partner = neighbors_.partner();
+  for (int t = 0; t < T; ++t) {
+    ThreadWork& w = work_[static_cast<std::size_t>(t)];
+    w.crossing_pairs.clear();
+    w.crossing_pair_owners.clear();
+    if (near_active_) {
+      for (std::size_t k = 0; k < w.near_pairs.size(); ++k)
+        if (partner[static_cast<std::size_t>(w.near_pairs[k])] >= w.particle_end) {
+          w.crossing_pairs.push_back(w.near_pairs[k]);
+          w.crossing_pair_owners.push_back(w.near_owners[k]);
+        }
+    } else {
+      for (int owner = w.particle_begin; owner < w.particle_end; ++owner)
+        for (int p = first[owner]; p < first[owner + 1]; ++p)
+          if (partner[p] >= w.particle_end) {
+            w.crossing_pairs.push_back(p);
+            w.crossing_pair_owners.push_back(owner);
+          }
+    }
+    w.crossing_pair_results.resize(w.crossing_pairs.size());
+    w.crossing_pair_acts.resize(w.crossing_pairs.size());
   }
   // Each thread's slice of the crossing pairs of all threads, concatenated in thread order,
   // evaluated before the step's barrier (pair_forces): about the same work for every thread,
@@ -350,6 +372,7 @@ void Engine::bond_contribution(BondModel<BondLaw>& model, std::size_t b, Contrib
   }
   if (f.broken) {
     bonds_.state[b] = 1;
+    ++work.totals.bonds_removed;  // its pair may act from the next step: the near list is stale
     // The pair interacts through the contact law from the next step on. The pair belongs to
     // the bond's owner, so only this thread writes its flag; a crossing pair may be evaluated
     // by another thread before the barrier, so its flag waits until after it.
@@ -527,22 +550,34 @@ void Engine::pair_forces(ContactModel<Law>& model, Totals& totals) {
       }
     }
     std::size_t crossing_index = 0;
-    const int pairs_end = first[end];
     // Each listed pair's particle i, walked along with the blocks (not stored per pair: issue
     // #14, bytes per particle).
     int block_owner[capacity];
     int owner_now = begin;
-    for (int p0 = first[begin]; p0 < pairs_end; p0 += capacity) {
-      const int count = std::min(capacity, pairs_end - p0);
-      for (int k = 0; k < count; ++k) {
-        while (first[owner_now + 1] <= p0 + k) ++owner_now;
-        block_owner[k] = owner_now;
-      }
+    // The near list's pairs (a subsequence of the listed ones: the same acting pairs in the
+    // same order), or every listed pair of the range.
+    const int near_count = near_active_ ? static_cast<int>(work.near_pairs.size()) : 0;
+    const int walk_begin = near_active_ ? 0 : first[begin];
+    const int walk_end = near_active_ ? near_count : first[end];
+    for (int p0 = walk_begin; p0 < walk_end; p0 += capacity) {
+      const int count = std::min(capacity, walk_end - p0);
       // Guarded only where another thread may be moving this range's crossing partners.
-      if (Integrate && end < n)
-        run_block.template operator()<false, Integrate>(nullptr, block_owner, p0, count, end);
-      else
-        run_block.template operator()<false, false>(nullptr, block_owner, p0, count, end);
+      if (near_active_) {
+        if (Integrate && end < n)
+          run_block.template operator()<true, Integrate>(work.near_pairs.data(), work.near_owners.data(), p0, count,
+                                                         end);
+        else
+          run_block.template operator()<true, false>(work.near_pairs.data(), work.near_owners.data(), p0, count, end);
+      } else {
+        for (int k = 0; k < count; ++k) {
+          while (first[owner_now + 1] <= p0 + k) ++owner_now;
+          block_owner[k] = owner_now;
+        }
+        if (Integrate && end < n)
+          run_block.template operator()<false, Integrate>(nullptr, block_owner, p0, count, end);
+        else
+          run_block.template operator()<false, false>(nullptr, block_owner, p0, count, end);
+      }
       for (int c = 0; c < block.count; ++c) {
         const int i = block.owner[c], j = block.other[c];
         if (block.evaluated_before[c]) {
@@ -625,7 +660,7 @@ void Engine::pair_forces(ContactModel<Law>& model, Totals& totals) {
           largest = std::max(largest, work_[static_cast<std::size_t>(s)].totals.max_stiffness_over_mass);
         dt = time_step_from_stiffness(largest);
       }
-      advance_particles(begin, end, dt);
+      local.max_speed2 = advance_particles(begin, end, dt);
     }
   }
 
@@ -635,6 +670,8 @@ void Engine::pair_forces(ContactModel<Law>& model, Totals& totals) {
     const ThreadWork& work = work_[static_cast<std::size_t>(t)];
     totals.max_stiffness_over_mass = std::max(totals.max_stiffness_over_mass, work.totals.max_stiffness_over_mass);
     totals.bond_breaks += work.totals.bond_breaks;
+    totals.max_speed2 = std::max(totals.max_speed2, work.totals.max_speed2);
+    if (work.totals.bonds_removed > 0) near_stale_ = true;
     // Where each failed: the middle of the bond at this step's force evaluation.
     if (work.failed_positions_full) throw std::bad_alloc();
     for (std::size_t k = 0; k < work.failed_bonds.size(); ++k)
@@ -707,20 +744,35 @@ double Engine::wall_forces(ContactModel<Law>& model, double* stiffness, double* 
   return max_stiffness_over_mass;
 }
 
-void Engine::advance_particles(int begin, int end, double dt) {
+double Engine::advance_particles(int begin, int end, double dt) {
   auto& P = particles_;
   const double* __restrict damping = type_damping_.data();
   const int* __restrict type = P.type.data();
-  for (int i = begin; i < end; ++i) {
-    // Fixed particles have zero inverse mass and inertia: they keep zero velocity without a
-    // branch, so the loop vectorizes.
-    const double alpha = damping[type[i]];
-    const Vec3 f = apply_local_damping(P.force[i], P.velocity[i], alpha);
-    const Vec3 m = apply_local_damping(P.torque[i], P.angular_velocity[i], alpha);
-    P.velocity[i] += (P.inverse_mass[i] * dt) * f;
-    P.angular_velocity[i] += (P.inverse_inertia[i] * dt) * m;
-    P.position[i] += dt * P.velocity[i];
-  }
+  double max_speed2 = 0.0;
+  // Without torques (spin_free_) the spins cannot change: the rotation's update is skipped,
+  // which changes no bit (the torque is zero, so its damped value and the spin increment are).
+  const auto advance = [&]<bool Rotate>() {
+    for (int i = begin; i < end; ++i) {
+      // Fixed particles have zero inverse mass and inertia: they keep zero velocity without a
+      // branch, so the loop vectorizes.
+      const double alpha = damping[type[i]];
+      const Vec3 f = apply_local_damping(P.force[i], P.velocity[i], alpha);
+      P.velocity[i] += (P.inverse_mass[i] * dt) * f;
+      if constexpr (Rotate) {
+        const Vec3 m = apply_local_damping(P.torque[i], P.angular_velocity[i], alpha);
+        P.angular_velocity[i] += (P.inverse_inertia[i] * dt) * m;
+      }
+      P.position[i] += dt * P.velocity[i];
+      // Each particle moved dt |v| (the near list's drift, dem/near_pairs.cpp).
+      const double speed2 = norm2(P.velocity[i]);
+      max_speed2 = speed2 > max_speed2 ? speed2 : max_speed2;
+    }
+  };
+  if (spin_free_)
+    advance.template operator()<false>();
+  else
+    advance.template operator()<true>();
+  return max_speed2;
 }
 
 void Engine::integrate_measured(Totals& totals) {
@@ -729,6 +781,7 @@ void Engine::integrate_measured(Totals& totals) {
   auto& P = particles_;
   const int chunks = chunk_count(n);
   chunk_sums_.assign(3 * static_cast<std::size_t>(chunks), 0.0);
+  chunk_max_speed2_.assign(static_cast<std::size_t>(chunks), 0.0);
   const double* __restrict damping = type_damping_.data();
   const int* __restrict type = P.type.data();
   // Fixed chunks, whose sums are the same at any thread count.
@@ -749,7 +802,7 @@ void Engine::integrate_measured(Totals& totals) {
       unbalanced += norm(P.force[i]);
       free_count += 1.0;
     }
-    advance_particles(chunk_begin, chunk_end, dt);
+    chunk_max_speed2_[static_cast<std::size_t>(c)] = advance_particles(chunk_begin, chunk_end, dt);
     chunk_sums_[3 * static_cast<std::size_t>(c)] = kinetic;
     chunk_sums_[3 * static_cast<std::size_t>(c) + 1] = unbalanced;
     chunk_sums_[3 * static_cast<std::size_t>(c) + 2] = free_count;
@@ -760,6 +813,7 @@ void Engine::integrate_measured(Totals& totals) {
     totals.kinetic_energy += chunk_sums_[3 * static_cast<std::size_t>(c)];
     totals.unbalanced_force_sum += chunk_sums_[3 * static_cast<std::size_t>(c) + 1];
     free_count += chunk_sums_[3 * static_cast<std::size_t>(c) + 2];
+    totals.max_speed2 = std::max(totals.max_speed2, chunk_max_speed2_[static_cast<std::size_t>(c)]);
   }
   totals.free_particles = static_cast<std::size_t>(free_count);
 }
@@ -849,6 +903,7 @@ template <bool Measure>
 Engine::Totals Engine::step_impl() {
   tune_threads();
   if (neighbors_.needs_rebuild(particles_.position, particles_.radius)) refresh_neighbors();
+  if (near_list_due()) refresh_near_pairs();
   Totals totals;
   // An unmeasured step integrates inside the force region (one fork and join of the threads
   // per step); a measured one after it, over the fixed chunks of its sums.
@@ -864,6 +919,7 @@ Engine::Totals Engine::step_impl() {
       model_);
   if (step_from_forces()) dt_ = time_step_from_stiffness(totals.max_stiffness_over_mass);
   if constexpr (Measure) integrate_measured(totals);
+  near_drift_ += dt_ * std::sqrt(totals.max_speed2);
   for (auto& wall : walls_) wall.point += dt_ * wall.velocity;
   ++step_;
   time_ += dt_;

@@ -22,6 +22,8 @@ struct LinearContact {
             combine_stiffness(a.shear_stiffness, b.shear_stiffness, rule), std::min(a.friction, b.friction)};
   }
   static constexpr double reach(const Params& /*p*/) { return 0.0; }
+  // Without friction the Coulomb limit is zero: no shear force, so no torque, ever.
+  static constexpr bool torque_free(const Params& p) { return p.friction == 0.0; }
   static double stiffness(const Params& p, double /*radius*/) {
     return std::max(p.normal_stiffness, p.shear_stiffness);
   }
