@@ -80,12 +80,12 @@ TEST(EngineState, DamagedOrForeignCheckpointIsAnInputError) {
   EXPECT_THROW(other.load_state(again), InputError);
   // An earlier version's state: the refusal names its format and this version's.
   std::string older = bytes;
-  ASSERT_EQ(older.substr(0, 8), "PDEMECK4");
-  older[7] = '3';
+  ASSERT_EQ(older.substr(0, 8), "PDEMECK5");
+  older[7] = '4';
   std::stringstream old_state(older);
   const std::string message = test::error_of([&] { target.load_state(old_state); });
-  EXPECT_NE(message.find("header PDEMECK3"), std::string::npos) << message;
-  EXPECT_NE(message.find("reads PDEMECK4"), std::string::npos) << message;
+  EXPECT_NE(message.find("header PDEMECK4"), std::string::npos) << message;
+  EXPECT_NE(message.find("reads PDEMECK5"), std::string::npos) << message;
 }
 
 TEST(EngineState, GrowingRadiusScalesMassAtConstantDensity) {

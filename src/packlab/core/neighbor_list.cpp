@@ -298,6 +298,76 @@ void NeighborList::build(const Box& box, std::vector<Vec3>& position, const std:
 
 void NeighborList::release_history_map() { release_memory(previous_index_); }
 
+void NeighborList::renumber(const std::vector<int>& new_index, std::vector<int>& source,
+                            std::vector<std::uint8_t>& reversed) {
+  const int n = static_cast<int>(particle_count());
+  const std::size_t pairs = partner_.size();
+  // Each pair under the smaller of its two new indices; a self image stays under its particle
+  // with its code (a build lists it once, at the code above the unshifted one).
+  std::vector<int> owner(pairs);
+  std::vector<int> counts(static_cast<std::size_t>(n) + 1, 0);
+  source.resize(pairs);
+  reversed.assign(pairs, 0);
+  for (int i = 0; i < n; ++i)
+    for (int p = first_[i]; p < first_[i + 1]; ++p) {
+      const int a = new_index[i], b = new_index[partner_[p]];
+      owner[p] = std::min(a, b);
+      reversed[p] = b < a;
+      ++counts[static_cast<std::size_t>(owner[p]) + 1];
+    }
+  std::vector<int> first(static_cast<std::size_t>(n) + 1, 0);
+  for (int i = 0; i < n; ++i) first[i + 1] = first[i] + counts[static_cast<std::size_t>(i) + 1];
+  std::vector<int> partner(pairs), fill(first.begin(), first.end() - 1);
+  std::vector<std::uint8_t> image(pairs), flip(pairs);
+  for (int i = 0; i < n; ++i)
+    for (int p = first_[i]; p < first_[i + 1]; ++p) {
+      const int q = fill[static_cast<std::size_t>(owner[p])]++;
+      const bool swap = reversed[p] != 0;
+      partner[q] = swap ? new_index[i] : new_index[partner_[p]];
+      // Code c of shift s; the opposite shift -s has code 26 - c.
+      image[q] = swap ? static_cast<std::uint8_t>(26 - image_[p]) : image_[p];
+      flip[q] = reversed[p];
+      source[q] = p;
+    }
+  // Each particle's partners in the order a build gives (by partner, then image), so that the
+  // next build maps the histories across (insertion sort: a dozen entries).
+  for (int i = 0; i < n; ++i)
+    for (int a = first[i] + 1; a < first[i + 1]; ++a) {
+      const int pj = partner[a], ps = source[a];
+      const std::uint8_t pc = image[a], pf = flip[a];
+      int b = a;
+      for (; b > first[i] && (partner[b - 1] > pj || (partner[b - 1] == pj && image[b - 1] > pc)); --b) {
+        partner[b] = partner[b - 1];
+        image[b] = image[b - 1];
+        flip[b] = flip[b - 1];
+        source[b] = source[b - 1];
+      }
+      partner[b] = pj;
+      image[b] = pc;
+      flip[b] = pf;
+      source[b] = ps;
+    }
+  first_.swap(first);
+  partner_.swap(partner);
+  image_.swap(image);
+  reversed.swap(flip);
+  release_memory(previous_index_);
+  std::vector<Vec3> position(position_at_build_.size());
+  std::vector<double> radius(radius_at_build_.size());
+  for (std::size_t i = 0; i < position.size(); ++i) position[static_cast<std::size_t>(new_index[i])] = position_at_build_[i];
+  for (std::size_t i = 0; i < radius.size(); ++i) radius[static_cast<std::size_t>(new_index[i])] = radius_at_build_[i];
+  position_at_build_.swap(position);
+  radius_at_build_.swap(radius);
+}
+
+double NeighborList::mean_index_distance() const {
+  const int n = static_cast<int>(particle_count());
+  double sum = 0.0;
+  for (int i = 0; i < n; ++i)
+    for (int p = first_[i]; p < first_[i + 1]; ++p) sum += static_cast<double>(partner_[p] - i);
+  return partner_.empty() ? 0.0 : sum / static_cast<double>(partner_.size());
+}
+
 NeighborList::Memory NeighborList::memory() const {
   Memory m;
   m.per_particle_arrays = heap_bytes(first_) + heap_bytes(position_at_build_) + heap_bytes(radius_at_build_);

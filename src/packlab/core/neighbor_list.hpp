@@ -59,6 +59,16 @@ class NeighborList {
   // Frees the map above, for a caller that has carried its histories over (it would otherwise
   // be kept until the next build: 4 bytes per listed pair).
   void release_history_map();
+  // Renumbers the particles: particle i becomes new_index[i] (a permutation). The same pairs
+  // are then listed under the new numbers as a build lists them (each pair under the smaller
+  // index, each particle's partners in ascending order), with the positions and radii at the
+  // build renumbered too, so the list stays valid without a rebuild. source[p] is the index
+  // that new pair p had before; reversed[p] is 1 where its two particles swapped roles (its
+  // image code is then that of the opposite shift, and a per-pair history oriented from i to
+  // j must be reversed).
+  void renumber(const std::vector<int>& new_index, std::vector<int>& source, std::vector<std::uint8_t>& reversed);
+  // Mean |j - i| over the listed pairs: how far apart in memory neighbours lie.
+  double mean_index_distance() const;
   // Displacement of image code c in the box the list was built for.
   const Vec3& image_offset(int code) const { return offsets_[code]; }
   long builds() const { return builds_; }

@@ -10,9 +10,10 @@
 namespace packlab::dem {
 
 namespace {
-// "PDEMECK4": no per-particle damping, densities only when the input had them. (3: one-byte
-// bond states, scalar bond torsion.)
-constexpr std::uint64_t checkpoint_magic = 0x344B43454D454450ULL;
+// "PDEMECK5": the particle sort's reference distance (resort_particles). (4: no per-particle
+// damping, densities only when the input had them; 3: one-byte bond states, scalar bond
+// torsion.)
+constexpr std::uint64_t checkpoint_magic = 0x354B43454D454450ULL;
 
 }  // namespace
 
@@ -53,6 +54,8 @@ void Engine::save_state(std::ostream& out) const {
   neighbors_.save(out);
   std::visit([&](const auto& model) { binary::write_vector(out, model.history); }, model_);
   binary::write_vector(out, breaks_);
+  binary::write(out, sorted_index_distance_);
+  binary::write(out, resorts_);
 }
 
 void Engine::load_state(std::istream& in) {
@@ -84,7 +87,12 @@ void Engine::load_state(std::istream& in) {
   binary::read_vector(in, P.type, "types");
   binary::read_vector(in, P.fixed, "fixed flags");
   binary::read_vector(in, density_, "densities");
+  const std::vector<int> built_order = original_index_;
   binary::read_vector(in, original_index_, "particle order");
+  // Bonds are kept in the order the engine was built with (only engines without bonds sort
+  // their particles again: resort_particles).
+  if (!bonds_.i.empty() && original_index_ != built_order)
+    fail_input("checkpoint is damaged: the particle order does not match the bonded model's");
   binary::read_vector(in, wraps_, "periodic images");
   std::vector<std::uint8_t> bond_state;
   binary::read_vector(in, bond_state, "bond states");
@@ -140,6 +148,17 @@ void Engine::load_state(std::istream& in) {
       std::visit([&](auto& m) { return m.history.size(); }, model_) != neighbors_.pair_count())
     fail_input("checkpoint is damaged: contact histories do not match the neighbour list");
   binary::read_vector(in, breaks_, "bond breaks");
+  binary::read(in, sorted_index_distance_, "particle sort");
+  binary::read(in, resorts_, "particle sorts");
+  // The particle order is the saved one: every index must be there once.
+  {
+    std::vector<std::uint8_t> seen(n, 0);
+    for (const int k : original_index_) {
+      if (k < 0 || static_cast<std::size_t>(k) >= n || seen[static_cast<std::size_t>(k)])
+        fail_input("checkpoint is damaged: the particle order is not a permutation");
+      seen[static_cast<std::size_t>(k)] = 1;
+    }
+  }
   mark_bonded_pairs();
   partition_work();
 }

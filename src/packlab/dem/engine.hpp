@@ -73,6 +73,15 @@ struct EngineConfig {
   // particles may have moved that far. It changes which pairs are visited, never which act:
   // the results are the same bit for bit. 0 = walk every listed pair. In [0, 1].
   double near_margin_ratio = 0.05;
+  // Gases (the void expansion method): particles diffuse away from the space-filling-curve
+  // order they are given at the start, and neighbours end up far apart in memory (two threads
+  // then share most pairs: each thread's particles are spread over the whole box). With this
+  // on, a neighbour rebuild renumbers the particles along the curve again when the listed
+  // pairs' mean index distance has grown to 1.5 times what it was after the last sort
+  // (dem/resort.cpp). Only without bonds (ignored with them). The engine's order
+  // (particles(), original_index()) then changes during the run; results stay the same at any
+  // thread count and on resume, but not bit for bit those of a run without it.
+  bool resort_particles = false;
   // Bonds of the packing's bond list: the bond law and its parameters per bond material.
   // Required when the packing has intact bonds. E.g.
   //   config.bond_materials = BondMaterialList<ElasticBond>{{.youngs_modulus = 6.5e9}};
@@ -229,6 +238,10 @@ class Engine {
   // Refreshes of the near list, and the pairs it holds now (every listed pair when the pair
   // loop walks them all).
   long near_list_refreshes() const { return near_refreshes_; }
+  long particle_resorts() const { return resorts_; }  // resort_particles
+  // Renumbers the particles along the space-filling curve now (what resort_particles does at a
+  // rebuild when neighbours have drifted apart in memory); histories follow their pairs.
+  void sort_particles();
   std::size_t near_pairs() const;
   std::size_t listed_pairs() const { return neighbors_.pair_count(); }
   EngineMemory memory() const;
@@ -347,6 +360,9 @@ class Engine {
   bool step_from_forces() const;
   double time_step_from_stiffness(double max_stiffness_over_mass) const;
   void refresh_neighbors();
+  // resort_particles: renumbers the particles along the space-filling curve, the neighbour
+  // list and every per-particle and per-pair array with them (dem/resort.cpp).
+  void resort();
   // adapt_threads: probes and switches between one thread and the configured count before a
   // step (dem/step.cpp).
   void tune_threads();
@@ -432,6 +448,10 @@ class Engine {
   // stay as they are (issue #14: the void expansion method's integration reads a third less).
   bool spin_free_ = false;
   long near_refreshes_ = 0;
+  // resort_particles: the listed pairs' mean index distance after the last sort (0: not yet
+  // measured), and the sorts so far.
+  double sorted_index_distance_ = 0.0;
+  long resorts_ = 0;
   std::vector<double> stiffness_sum_;  // stiffness_sum rule: per particle [N/m]
   // Measured steps: per particle, the strain energy and contact force magnitudes of the
   // contacts it owns, summed in particle order afterwards (the same sums at any thread count).

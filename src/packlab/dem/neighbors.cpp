@@ -21,6 +21,17 @@ void Engine::refresh_neighbors() {
       },
       model_);
   neighbors_.release_history_map();
+  if (config_.resort_particles && bonds_.i.empty()) {
+    // A gas loses its order as it diffuses: sort again once neighbours lie 1.5 times as far
+    // apart in memory as after the last sort (measured on the list just built).
+    const double distance = neighbors_.mean_index_distance();
+    if (sorted_index_distance_ <= 0.0)
+      sorted_index_distance_ = distance;
+    else if (distance > 1.5 * sorted_index_distance_) {
+      resort();
+      sorted_index_distance_ = neighbors_.mean_index_distance();
+    }
+  }
   mark_bonded_pairs();
   partition_work();
 }

@@ -218,6 +218,9 @@ dem::EngineConfig Vem::engine_config() const {
   c.skin_ratio = params_.skin / std::max(1.0, params_.void_radius_ratio);
   c.threads = params_.threads;
   c.adapt_threads = params_.adapt_threads;
+  // The structure is a gas until it jams: its particles diffuse out of their sorted order
+  // (dem/resort.cpp).
+  c.resort_particles = true;
   return c;
 }
 

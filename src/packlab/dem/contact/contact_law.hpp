@@ -22,6 +22,12 @@
 //   static PairTangent tangent(const ContactGeometry&, const Params&);
 //                                               the normal and tangential stiffness of a
 //                                               touching contact linearized at its overlap
+//   static bool torque_free(const Params&);      true where the law can exert no torque
+//                                               (the integration may then skip the spins)
+//   static History reversed(const History&);    the history seen from the other particle
+//                                               (required unless History is a Vec3 along
+//                                               the pair from i to j, negated by default,
+//                                               or empty; see reversed_history below)
 // The engine instantiates one pair loop per law; adding a law touches no loop
 // (docs/engine.md, "Adding a contact law").
 #pragma once
@@ -32,6 +38,7 @@
 #include <limits>
 #include <numbers>
 #include <string_view>
+#include <type_traits>
 
 #include "packlab/core/vec3.hpp"
 #include "packlab/dem/material.hpp"
@@ -94,6 +101,23 @@ inline Vec3 rotate_into_plane(Vec3 tangential, const Vec3& normal, const Vec3& m
   tangential -= dot(tangential, normal) * normal;
   tangential += (dot(mean_spin, normal) * dt) * cross(normal, tangential);
   return tangential;
+}
+
+// A pair's history seen from its other particle: when the engine renumbers its particles
+// (EngineConfig::resort_particles) a pair's i and j can swap. A vector history from i to j (a
+// shear force on j, a tangential displacement of j relative to i) is negated; an empty one
+// stays; any other needs the law's reversed().
+template <class Law>
+typename Law::History reversed_history(const typename Law::History& h) {
+  using History = typename Law::History;
+  if constexpr (requires { Law::reversed(h); })
+    return Law::reversed(h);
+  else if constexpr (std::is_same_v<History, Vec3>)
+    return -h;
+  else {
+    static_assert(std::is_empty_v<History>, "a contact law with this history must define reversed()");
+    return h;
+  }
 }
 
 }  // namespace packlab::dem
