@@ -550,6 +550,31 @@ void Engine::pair_forces(ContactModel<Law>& model, Totals& totals) {
       }
     }
     std::size_t crossing_index = 0;
+    // The pairs come owner by owner, and a pair (i, j) has j > i (or j == i, a self image), so
+    // from the owner's first pair on nothing else adds to its force until its last: its sums
+    // stay in registers (loaded at its first pair, stored after its last), the same additions
+    // in the same order as adding to memory pair by pair, without two loads and stores per pair.
+    struct OwnerSums {
+      Vec3* __restrict force_out;
+      Vec3* __restrict torque_out;
+      double* __restrict stiffness_out;  // SumRule only
+      int index = -1;
+      Vec3 force{}, torque{};
+      double stiffness = 0.0;
+      // Stores the sums of the current owner (if any) and loads those of owner k (-1: none).
+      void take(int k) {
+        if (index >= 0) {
+          force_out[index] = force;
+          torque_out[index] = torque;
+          if constexpr (SumRule) stiffness_out[index] = stiffness;
+        }
+        index = k;
+        if (k < 0) return;
+        force = force_out[k];
+        torque = torque_out[k];
+        if constexpr (SumRule) stiffness = stiffness_out[k];
+      }
+    } owner{force, torque, stiffness};
     // Each listed pair's particle i, walked along with the blocks (not stored per pair: issue
     // #14, bytes per particle).
     int block_owner[capacity];
@@ -580,19 +605,32 @@ void Engine::pair_forces(ContactModel<Law>& model, Totals& totals) {
       }
       for (int c = 0; c < block.count; ++c) {
         const int i = block.owner[c], j = block.other[c];
+        if (i != owner.index) owner.take(i);
         if (block.evaluated_before[c]) {
           while (work.crossing_pairs[crossing_index] != block.pair[c]) ++crossing_index;
-          add_to_owner(i, work.crossing_pair_results[crossing_index]);
+          const Contribution& r = work.crossing_pair_results[crossing_index];
+          owner.force -= r.force_on_j;
+          owner.torque += r.torque_i;
+          if constexpr (SumRule) owner.stiffness += r.stiffness;
+          if constexpr (Measure) {
+            measure_energy[i] += r.energy;
+            measure_force[i] += r.force_norm;
+          }
           continue;
         }
         const Vec3 f{block.force_x[c], block.force_y[c], block.force_z[c]};
-        force[i] -= f;
-        force[j] += f;
-        torque[i] += Vec3{block.torque_i_x[c], block.torque_i_y[c], block.torque_i_z[c]};
-        torque[j] += Vec3{block.torque_j_x[c], block.torque_j_y[c], block.torque_j_z[c]};
-        if constexpr (SumRule) {
-          stiffness[i] += block.stiffness[c];
-          stiffness[j] += block.stiffness[c];
+        const Vec3 torque_j{block.torque_j_x[c], block.torque_j_y[c], block.torque_j_z[c]};
+        owner.force -= f;
+        owner.torque += Vec3{block.torque_i_x[c], block.torque_i_y[c], block.torque_i_z[c]};
+        if constexpr (SumRule) owner.stiffness += block.stiffness[c];
+        if (j == i) {  // a self image: both sides are the owner, in the same order
+          owner.force += f;
+          owner.torque += torque_j;
+          if constexpr (SumRule) owner.stiffness += block.stiffness[c];
+        } else {
+          force[j] += f;
+          torque[j] += torque_j;
+          if constexpr (SumRule) stiffness[j] += block.stiffness[c];
         }
         if constexpr (Measure) {
           measure_energy[i] += block.energy[c];
@@ -600,6 +638,7 @@ void Engine::pair_forces(ContactModel<Law>& model, Totals& totals) {
         }
       }
     }
+    owner.take(-1);
 
     // 3. Bonds the same way: earlier threads' crossing bonds, then the own ones in order.
     if (any_bonds) {
