@@ -40,6 +40,7 @@ int main(int argc, char** argv) {
              p.voids, p.phi_s, p.threads, fixed_threads ? "fixed" : "adaptive", p.skin, p.time_step_rule,
              p.time_step_safety);
   const long blowup_builds = vem.engine().neighbor_builds();
+  const long blowup_refreshes = vem.engine().near_list_refreshes();
   fmt::print("blow-up: {} steps in {:.2f} s, {:.4g} particle-steps/s, {} neighbour builds, mean dt {:.3g} s\n",
              blowup_steps, blowup_s, particles * static_cast<double>(blowup_steps) / blowup_s, blowup_builds,
              vem.engine().time() / static_cast<double>(blowup_steps));
@@ -56,6 +57,10 @@ int main(int argc, char** argv) {
       expansion_s / static_cast<double>(std::max(1L, cycles)), vem.curve().back().q, vem.limited_relaxations(),
       generate::vem_stop_name(vem.stop_reason()));
   fmt::print("expansion: {} neighbour builds\n", vem.engine().neighbor_builds() - blowup_builds);
+  // The near list (dem/near_pairs.cpp) and the particle sorts (dem/resort.cpp), issue #14.
+  fmt::print("near list: {} refreshes ({} in the blow-up), {} of {} listed pairs at the end; particles sorted {} times\n",
+             vem.engine().near_list_refreshes(), blowup_refreshes, vem.engine().near_pairs(),
+             vem.engine().listed_pairs(), vem.engine().particle_resorts());
   fmt::print("total: {:.2f} s, {:.4g} particle-steps/s\n", blowup_s + expansion_s,
              particles * static_cast<double>(vem.total_steps()) / (blowup_s + expansion_s));
   for (std::size_t k = 0; k < vem.curve().size(); k += 10) {

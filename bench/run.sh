@@ -97,7 +97,7 @@ else
   # 10^4 and 10^5 monodisperse at G = 3 in one run: CPU time ratio (issue #14: <= 13, N log N),
   # bytes per particle (PackingGeneration: 22.7 s and 555 s at rate 1e-1)
   run bench_ls scaling 10000 100000 3
-  run bench_vem 2                           # Fig. 1 case end to end on 2 threads (7-9 minutes)
+  run bench_vem 2                           # Fig. 1 case end to end on 2 threads (about 10 minutes here)
 fi
 # Oscillatory shear: one orientation of the N = 8000 shear case (doh §2.4), contact bonds.
 run bench_shear "$ROOT/examples/shear/data/vem_ns8000_nv2000.xyz" 1 $([ "$quick" = 1 ] && echo "2000 2" || echo "10000 10")

@@ -263,7 +263,7 @@ Engine::Engine(const Packing& packing, const EngineConfig& config) : packing_(pa
   packing_.bonds = Bonds{};
 
   neighbors_.set_skin(config_.skin_ratio * r_max);
-  near_margin_ = config_.near_margin_ratio * neighbors_.skin();
+  near_base_margin_ = near_margin_ = config_.near_margin_ratio * neighbors_.skin();
   neighbors_.set_reach(reach);
   masses_changed();
   if (config_.time_step > 0.0)

@@ -69,9 +69,10 @@ struct EngineConfig {
   double max_time_step = 0.0;
   double skin_ratio = 0.2;  // Verlet skin as a fraction of the largest radius [-]
   // The near list (dem/near_pairs.cpp): the pair loop walks only the listed pairs within the
-  // law's range plus this fraction of the skin, refreshed from the Verlet list whenever the
-  // particles may have moved that far. It changes which pairs are visited, never which act:
-  // the results are the same bit for bit. 0 = walk every listed pair. In [0, 1].
+  // law's range plus a margin of at least this fraction of the skin (more where the particles
+  // move fast), refreshed from the Verlet list whenever the particles may have moved half of
+  // it. It changes which pairs are visited, never which act: the results are the same bit for
+  // bit. 0 = walk every listed pair. In [0, 1].
   double near_margin_ratio = 0.05;
   // Gases (the void expansion method): particles diffuse away from the space-filling-curve
   // order they are given at the start, and neighbours end up far apart in memory (two threads
@@ -440,7 +441,9 @@ class Engine {
   // The near list (dem/near_pairs.cpp): its margin beyond the law's range [m] (0: off), whether
   // the pair loop walks it (else every listed pair), whether it must be refreshed before the
   // next step, and a bound on how far any particle moved since its refresh [m].
-  double near_margin_ = 0.0;
+  double near_margin_ = 0.0;       // of the current near list
+  double near_base_margin_ = 0.0;  // near_margin_ratio x skin: the least margin
+  double last_max_speed_ = 0.0;    // the largest |v| after the last step [m/s]
   bool near_active_ = false, near_stale_ = true;
   double near_drift_ = 0.0;
   // No contact can exert a torque (a law's torque_free for every pair of types, e.g. linear

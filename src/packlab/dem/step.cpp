@@ -958,7 +958,8 @@ Engine::Totals Engine::step_impl() {
       model_);
   if (step_from_forces()) dt_ = time_step_from_stiffness(totals.max_stiffness_over_mass);
   if constexpr (Measure) integrate_measured(totals);
-  near_drift_ += dt_ * std::sqrt(totals.max_speed2);
+  last_max_speed_ = std::sqrt(totals.max_speed2);
+  near_drift_ += dt_ * last_max_speed_;
   for (auto& wall : walls_) wall.point += dt_ * wall.velocity;
   ++step_;
   time_ += dt_;
