@@ -460,3 +460,36 @@ TEST(Engine, WithoutFrictionTheSpinsNeitherChangeNorMatter) {
   config.types[0].friction = 0.3;
   EXPECT_FALSE(run(p, config).angular_velocity == p.angular_velocity) << "with friction the spins must change";
 }
+
+TEST(Engine, ShearSpringsSurviveTheWrapOfAParticleAtARebuild) {
+  // Two spheres in a box 1.96 long in x touch each other on both sides (the pair is listed
+  // twice, images 0 and -1), so the normal forces balance and the contacts persist. They slide
+  // past each other along y and their shear springs (no sliding: mu huge) make them oscillate.
+  // The same pair drifting along x at a common speed (a Galilean boost: the contact forces do
+  // not change) crosses the x boundary many times, so particles are wrapped at rebuilds and
+  // each wrap changes the image code of their pairs: the springs must be carried across. (They
+  // were reset at such a rebuild before, and the oscillation then lost its phase.)
+  const auto run = [](double drift) {
+    Packing p;
+    p.box.length = {1.96, 4, 4};
+    p.add({0.5, 2, 2}, 0.5);
+    p.add({1.48, 2, 2}, 0.5);
+    p.velocity = {{drift, 0.01, 0}, {drift, -0.01, 0}};
+    EngineConfig config;
+    config.types = {Material{1000.0, 500.0, 1e6, 1000.0, 0.0}};
+    config.stiffness_rule = StiffnessRule::contact;
+    config.near_margin_ratio = 0.0;
+    config.threads = 1;
+    Engine engine(p, config);
+    engine.run(3000);
+    return std::pair{engine.packing(), engine.neighbor_builds()};
+  };
+  const auto [still, still_builds] = run(0.0);
+  const auto [drifting, drifting_builds] = run(0.05);
+  EXPECT_GT(drifting_builds, still_builds + 20);  // the drift made it rebuild (and wrap)
+  for (std::size_t k = 0; k < 2; ++k) {
+    EXPECT_NEAR(drifting.velocity[k].y, still.velocity[k].y, 1e-12) << k;  // measured 2e-17
+    EXPECT_NEAR(drifting.angular_velocity[k].z, still.angular_velocity[k].z, 1e-12) << k;  // 3e-16
+  }
+  EXPECT_GT(std::abs(still.velocity[0].y - 0.01), 1e-3);  // the springs did act
+}

@@ -41,13 +41,17 @@ struct Box {
   Vec3 wrap(Vec3 p, std::array<int, 3>* image = nullptr) const {
     for (int a = 0; a < 3; ++a) {
       if (!periodic[a]) continue;
-      const double n = std::floor((p[a] - lo[a]) / length[a]);
+      double n = std::floor((p[a] - lo[a]) / length[a]);
       // A run gone non-finite (the engine stops it at its next measured step) or flung beyond
       // int range must not reach the integer cast below (undefined behaviour).
       if (!(std::abs(n) < 1e9)) continue;
       p[a] -= n * length[a];
-      // floor can land exactly on hi after round-off; keep the half-open interval.
-      if (p[a] >= lo[a] + length[a]) p[a] -= length[a];
+      // floor can land exactly on hi after round-off; keep the half-open interval (and count
+      // that wrap too: the image it adds is real).
+      if (p[a] >= lo[a] + length[a]) {
+        p[a] -= length[a];
+        n += 1.0;
+      }
       if (p[a] < lo[a]) p[a] = lo[a];
       if (image) (*image)[a] += static_cast<int>(n);
     }

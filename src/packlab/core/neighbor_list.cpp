@@ -78,11 +78,24 @@ void NeighborList::build(const Box& box, std::vector<Vec3>& position, const std:
       fail_input(fmt::format(
           "periodic box edge along {} = {:g} m is shorter than the interaction range 2*r_max + reach + skin = {:g} m",
           "xyz"[a], box.length[a], range));
-  if (wraps) {
-    wraps->resize(position.size(), {0, 0, 0});
-    for (std::size_t k = 0; k < position.size(); ++k) position[k] = box.wrap(position[k], &(*wraps)[k]);
-  } else {
-    for (auto& p : position) p = box.wrap(p);
+  // The wrap of each particle at this build, as an image code (13: not wrapped; 255: by more
+  // than one box length): a wrap changes the image code of the particle's pairs, and the
+  // history map below must look for each pair under its code before the wrap.
+  std::vector<std::uint8_t> wrap_code;
+  bool wrapped_any = false;
+  const bool map_history = first_.size() == static_cast<std::size_t>(n) + 1;
+  if (wraps) wraps->resize(position.size(), {0, 0, 0});
+  if (map_history) wrap_code.assign(position.size(), static_cast<std::uint8_t>(unshifted_image));
+  for (std::size_t k = 0; k < position.size(); ++k) {
+    std::array<int, 3> shift{0, 0, 0};
+    position[k] = box.wrap(position[k], &shift);
+    if (shift == std::array<int, 3>{0, 0, 0}) continue;
+    if (wraps)
+      for (int a = 0; a < 3; ++a) (*wraps)[k][a] += shift[a];
+    if (!map_history) continue;
+    wrapped_any = true;
+    const bool one_box = std::abs(shift[0]) <= 1 && std::abs(shift[1]) <= 1 && std::abs(shift[2]) <= 1;
+    wrap_code[k] = one_box ? static_cast<std::uint8_t>(image_code(shift[0], shift[1], shift[2])) : std::uint8_t{255};
   }
   for (int c = 0; c < 27; ++c) offsets_[c] = box.shift_vector(image_of_code(c));
 
@@ -276,7 +289,11 @@ void NeighborList::build(const Box& box, std::vector<Vec3>& position, const std:
     image_.shrink_to_fit();
   }
 
-  // Map new pairs onto old ones (both lists are sorted per i).
+  // Map new pairs onto old ones (both lists are sorted per i, by partner and then image).
+  // Wrapping r_i by s_i and r_j by s_j box lengths (r' = r - s L) turns the pair seen through
+  // image c into the same pair seen through image c + s_j - s_i: the old list holds it under
+  // c_new - s_j + s_i. For one partner that is the same shift of every code, so the old codes
+  // looked for stay in ascending order and the merge below still walks forward.
   previous_index_.assign(partner_.size(), -1);
   if (old_first.size() == first_.size()) {
 #pragma omp parallel for num_threads(threads) schedule(static)
@@ -284,10 +301,17 @@ void NeighborList::build(const Box& box, std::vector<Vec3>& position, const std:
       int o = old_first[i];
       const int o_end = old_first[i + 1];
       for (int p = first_[i]; p < first_[i + 1]; ++p) {
-        while (o < o_end &&
-               (old_partner[o] < partner_[p] || (old_partner[o] == partner_[p] && old_image[o] < image_[p])))
-          ++o;
-        if (o < o_end && old_partner[o] == partner_[p] && old_image[o] == image_[p]) previous_index_[p] = o;
+        const int j = partner_[p];
+        int code = image_[p];
+        if (wrapped_any && j != i && (wrap_code[i] != unshifted_image || wrap_code[j] != unshifted_image)) {
+          if (wrap_code[i] == 255 || wrap_code[j] == 255) continue;  // moved a box length: no history
+          const auto c = image_of_code(code), si = image_of_code(wrap_code[i]), sj = image_of_code(wrap_code[j]);
+          const int sx = c[0] - sj[0] + si[0], sy = c[1] - sj[1] + si[1], sz = c[2] - sj[2] + si[2];
+          if (std::abs(sx) > 1 || std::abs(sy) > 1 || std::abs(sz) > 1) continue;  // not listable before
+          code = image_code(sx, sy, sz);
+        }
+        while (o < o_end && (old_partner[o] < j || (old_partner[o] == j && old_image[o] < code))) ++o;
+        if (o < o_end && old_partner[o] == j && old_image[o] == code) previous_index_[p] = o;
       }
     }
   }
