@@ -27,11 +27,21 @@ Packing dense_random(long n, double phi, std::uint64_t seed) {
   return generate::make_random_packing(p, rng);
 }
 
-// FCC, 3 x 3 x 3 cells, radii grown by 1 %: every neighbour pair overlaps by 2 % of a radius.
-Packing compressed_fcc() {
-  Packing p = test::fcc(3);
+// FCC, cells^3 cells, radii grown by 1 %: every neighbour pair overlaps by 2 % of a radius.
+Packing compressed_fcc(int cells = 3) {
+  Packing p = test::fcc(cells);
   for (auto& r : p.radius) r *= 1.01;
   return p;
+}
+
+// Small random vibrations about the lattice: velocities of 2e-4 and spins of 4e-4, small
+// enough that every contact persists and no shear spring slides.
+void set_small_vibrations(Packing& p, std::uint64_t seed) {
+  Random rng(seed);
+  p.velocity.assign(p.size(), Vec3{});
+  p.angular_velocity.assign(p.size(), Vec3{});
+  for (auto& v : p.velocity) v = 2e-4 * rng.unit_vector();
+  for (auto& w : p.angular_velocity) w = 4e-4 * rng.unit_vector();
 }
 
 double total_energy(Engine& e) {
@@ -168,11 +178,7 @@ TEST(Engine, EnergyIsConservedWithShearSprings) {
   config.threads = 1;
   Engine still(p, config);
   const double static_energy = still.step_measured().strain_energy;
-  Random rng(3);
-  p.velocity.assign(p.size(), Vec3{});
-  p.angular_velocity.assign(p.size(), Vec3{});
-  for (auto& v : p.velocity) v = 2e-4 * rng.unit_vector();
-  for (auto& w : p.angular_velocity) w = 4e-4 * rng.unit_vector();
+  set_small_vibrations(p, 3);
   const EnergyRun r = vibrate(p, config, 100'000, static_energy);
   EXPECT_EQ(r.contacts_start, 12 * p.size() / 2);
   EXPECT_EQ(r.contacts_end, 12 * p.size() / 2);
@@ -500,13 +506,8 @@ TEST(Engine, AVibratingLatticeMovedAcrossThePeriodicBoxIsTheSameAtTwoThreads) {
   // (a Galilean boost: no force changes) crosses the box's faces, so at many rebuilds many
   // particles are wrapped and their pairs change image, in both threads' ranges. The vibration
   // must be the same.
-  Packing start = test::fcc(5);
-  for (auto& r : start.radius) r *= 1.01;
-  Random rng(8);
-  start.velocity.assign(start.size(), Vec3{});
-  start.angular_velocity.assign(start.size(), Vec3{});
-  for (auto& v : start.velocity) v = 2e-4 * rng.unit_vector();
-  for (auto& w : start.angular_velocity) w = 4e-4 * rng.unit_vector();
+  Packing start = compressed_fcc(5);
+  set_small_vibrations(start, 8);
   EngineConfig config;
   config.types = {Material{1000.0, 500.0, 1e6, 1000.0, 0.0}};
   config.stiffness_rule = StiffnessRule::contact;

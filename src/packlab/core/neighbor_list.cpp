@@ -295,7 +295,7 @@ void NeighborList::build(const Box& box, std::vector<Vec3>& position, const std:
   // c_new - s_j + s_i. For one partner that is the same shift of every code, so the old codes
   // looked for stay in ascending order and the merge below still walks forward.
   previous_index_.assign(partner_.size(), -1);
-  if (old_first.size() == first_.size()) {
+  if (map_history) {
 #pragma omp parallel for num_threads(threads) schedule(static)
     for (int i = 0; i < n; ++i) {
       int o = old_first[i];

@@ -14,7 +14,6 @@
 
 #include "packlab/core/error.hpp"
 #include "packlab/core/memory.hpp"
-#include "packlab/core/spatial_sort.hpp"
 
 namespace packlab::dem {
 
@@ -138,7 +137,7 @@ Engine::Engine(const Packing& packing, const EngineConfig& config) : packing_(pa
 
   double r_max = 0.0;
   for (double r : packing_.radius) r_max = std::max(r_max, r);
-  original_index_ = spatial_order(packing_.box, packing_.position, 2.0 * r_max * (1.0 + config_.skin_ratio));
+  original_index_ = curve_order(packing_.position, r_max);
   particles_.resize(n);
   // Per type, not per particle (issue #14: bytes per particle).
   type_damping_.resize(static_cast<std::size_t>(type_count));

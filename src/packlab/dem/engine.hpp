@@ -364,6 +364,9 @@ class Engine {
   // resort_particles: renumbers the particles along the space-filling curve, the neighbour
   // list and every per-particle and per-pair array with them (dem/resort.cpp).
   void resort();
+  // The order along the space-filling curve of these positions (r_max: the largest radius),
+  // at construction and at every re-sort (dem/resort.cpp).
+  std::vector<int> curve_order(const std::vector<Vec3>& position, double r_max) const;
   // adapt_threads: probes and switches between one thread and the configured count before a
   // step (dem/step.cpp).
   void tune_threads();

@@ -27,10 +27,8 @@ void Engine::refresh_neighbors() {
     const double distance = neighbors_.mean_index_distance();
     if (sorted_index_distance_ <= 0.0)
       sorted_index_distance_ = distance;
-    else if (distance > 1.5 * sorted_index_distance_) {
+    else if (distance > 1.5 * sorted_index_distance_)
       resort();
-      sorted_index_distance_ = neighbors_.mean_index_distance();
-    }
   }
   mark_bonded_pairs();
   partition_work();

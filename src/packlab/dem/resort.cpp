@@ -32,14 +32,18 @@ void permute(std::vector<T>& v, const std::vector<int>& order) {
 
 }  // namespace
 
+std::vector<int> Engine::curve_order(const std::vector<Vec3>& position, double r_max) const {
+  // Cells of about one interaction range with the skin.
+  return spatial_order(packing_.box, position, 2.0 * r_max * (1.0 + config_.skin_ratio));
+}
+
 void Engine::resort() {
   const std::size_t n = particles_.size();
+  // The same curve and cells as at construction, from the positions the rebuild has just
+  // wrapped into the box.
   double r_max = 0.0;
   for (const double r : particles_.radius) r_max = std::max(r_max, r);
-  // The same curve and cells as at construction (engine.cpp), from the positions the rebuild
-  // has just wrapped into the box.
-  const std::vector<int> order =
-      spatial_order(packing_.box, particles_.position, 2.0 * r_max * (1.0 + config_.skin_ratio));
+  const std::vector<int> order = curve_order(particles_.position, r_max);
   std::vector<int> new_index(n);
   for (std::size_t k = 0; k < n; ++k) new_index[static_cast<std::size_t>(order[k])] = static_cast<int>(k);
 
@@ -84,6 +88,7 @@ void Engine::resort() {
         }
       },
       model_);
+  sorted_index_distance_ = neighbors_.mean_index_distance();
   ++resorts_;
 }
 
@@ -91,7 +96,6 @@ void Engine::sort_particles() {
   if (!bonds_.i.empty())
     fail_input("sort_particles: a bonded model keeps the order it was built with (its bonds are stored by it)");
   resort();
-  sorted_index_distance_ = neighbors_.mean_index_distance();
   mark_bonded_pairs();
   partition_work();
 }
