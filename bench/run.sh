@@ -4,6 +4,16 @@
 set -uo pipefail
 BUILD=${1:-build}
 ROOT=$(cd "$(dirname "$0")/.." && pwd)
+# Everything printed also goes to a log, read back at the end into issue #14's table of
+# targets (bench/targets.sh): each target with this run's figure and whether it holds.
+if [ -z "${PACKLAB_BENCH_LOG_OPEN:-}" ]; then
+  LOG=${BENCH_LOG:-$BUILD/bench.log}
+  PACKLAB_BENCH_LOG_OPEN=1 bash "$0" "$@" 2>&1 | tee "$LOG"
+  status=${PIPESTATUS[0]}
+  bash "$ROOT/bench/targets.sh" "$LOG" | tee -a "$LOG"
+  echo "(log: $LOG)"
+  exit "$status"
+fi
 PEERS="$ROOT/../shared/peers/dem"
 [ -d "$PEERS" ] || PEERS="$ROOT/shared/peers/dem"
 
@@ -28,6 +38,8 @@ if [ -x "$PEERS/lammps-relax.sh" ]; then
         'BEGIN { printf "ratio packlab/LAMMPS (%d core%s): %.2f  (%.3g vs %.3g particle-steps/s)\n", t, t > 1 ? "s" : "", a / b, a, b }'
     fi
   done
+  # Memory beside the peer's: LAMMPS's own estimate for the same case (bench/lammps_memory.sh).
+  bash "$ROOT/bench/lammps_memory.sh" "$PEERS"
 else
   echo "(peer scripts not found at $PEERS: LAMMPS ratio skipped)"
 fi
