@@ -5,6 +5,7 @@
 #include <cmath>
 #include <numbers>
 
+#include "packlab/core/random.hpp"
 #include "packlab/dem/contact/linear.hpp"
 #include "packlab/dem/engine.hpp"
 #include "packlab/dem/local_damping.hpp"
@@ -141,4 +142,38 @@ TEST(LinearContact, StrainEnergyIsTheWorkOfTheForce) {
   const double dE = (LinearContact::evaluate(plus, params, h).energy - LinearContact::evaluate(minus, params, h).energy) /
                     (2 * h_step);
   EXPECT_NEAR(dE, LinearContact::evaluate(g, params, h).normal_force, 1e-9);
+}
+
+// Without friction the engine evaluates the law's central form (no history, spins or
+// velocities gathered): it must give the numbers of the full law, whose shear force is then
+// scaled to its zero Coulomb limit. Random geometries, velocities, spins and stale histories.
+TEST(LinearContact, WithoutFrictionTheCentralFormGivesTheFullLawsNumbers) {
+  Random rng(11);
+  for (int k = 0; k < 2000; ++k) {
+    const LinearContact::Params params{rng.uniform(1.0, 1e4), rng.uniform(0.0, 1e3), 0.0};
+    ASSERT_TRUE(LinearContact::torque_free(params));
+    ContactGeometry g{};
+    g.normal = rng.unit_vector();
+    g.radius_i = rng.uniform(0.5, 2.0);
+    g.radius_j = rng.uniform(0.5, 2.0);
+    g.overlap = rng.uniform(0.0, 0.1) * (g.radius_i + g.radius_j);
+    g.branch_i = g.radius_i - 0.5 * g.overlap;
+    g.branch_j = g.radius_j - 0.5 * g.overlap;
+    g.relative_velocity = rng.uniform(0.0, 10.0) * rng.unit_vector();
+    g.mean_spin = rng.uniform(0.0, 10.0) * rng.unit_vector();
+    g.dt = rng.uniform(1e-4, 1e-2);
+    Vec3 history = rng.uniform(0.0, 1.0) * rng.unit_vector();
+    const PairForce full = LinearContact::evaluate(g, params, history);
+    const PairForce central = LinearContact::evaluate_central(g, params);
+    for (int a = 0; a < 3; ++a) {
+      EXPECT_EQ(central.force_on_j[a], full.force_on_j[a]) << k;
+      EXPECT_EQ(central.torque_i[a], 0.0);
+      EXPECT_EQ(central.torque_j[a], 0.0);
+      EXPECT_EQ(full.torque_i[a], 0.0) << k;
+    }
+    EXPECT_EQ(central.energy, full.energy) << k;
+    EXPECT_EQ(central.normal_force, full.normal_force) << k;
+    EXPECT_EQ(central.stiffness, full.stiffness) << k;
+    EXPECT_EQ(norm(history), 0.0) << k;  // the full law's spring: gone
+  }
 }

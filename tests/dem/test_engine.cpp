@@ -534,3 +534,59 @@ TEST(Engine, AVibratingLatticeMovedAcrossThePeriodicBoxIsTheSameAtTwoThreads) {
   EXPECT_LT(worst_velocity, 1e-11) << "velocities of order 2e-4";  // measured 8e-14; 1.3e-4 with the histories lost
   EXPECT_LT(worst_spin, 1e-10) << "spins of order 4e-4";  // measured 1.1e-13; 3.9e-4 with the histories lost
 }
+
+// Frictionless contacts without bonds take the law's central form (dem/step.cpp: no history,
+// velocity or spin gathered, no torque). The same cluster with one bonded pair far away takes
+// the full law (a bond can exert a torque); the pair never comes near the cluster and the
+// particles' curve order, lists and sums are the cluster's own, so the cluster must move the
+// same to the last bit: two types (their pair parameters and masses), damping, measured steps,
+// and the central form at two threads against the full law at one.
+TEST(Engine, FrictionlessContactsMoveAsUnderTheFullLaw) {
+  const double edge = 6.0;
+  Packing cluster = test::open_cube(4 * edge);
+  Random rng(5);
+  for (int k = 0; k < 400; ++k) {
+    cluster.add({rng.uniform(0.0, edge), rng.uniform(0.0, edge), rng.uniform(0.0, edge)}, rng.uniform(0.4, 0.6),
+                k % 3 == 0 ? 1 : 0);
+  }
+  cluster.velocity.assign(cluster.size(), Vec3{});
+  for (auto& v : cluster.velocity) v = 0.05 * rng.unit_vector();
+  Packing with_bond = cluster;
+  const Vec3 far{3.5 * edge, 3.5 * edge, 3.5 * edge}, apart{1.0, 0.0, 0.0};  // touching: no bond force
+  with_bond.add(far, 0.5);
+  with_bond.add(far + apart, 0.5);
+  with_bond.velocity.resize(with_bond.size(), Vec3{});
+  const int a = static_cast<int>(cluster.size()), b = a + 1;
+  with_bond.bonds.add(a, b, {0, 0, 0}, 0, norm(with_bond.position[b] - with_bond.position[a]));
+
+  auto run = [](const Packing& p, int threads, std::vector<double>& energies) {
+    EngineConfig config;
+    config.types = {Material{1000.0, 100.0, 0.0, 1000.0, 0.3}, Material{400.0, 40.0, 0.0, 3000.0, 0.3}};
+    config.bond_materials = BondMaterialList<ContactBond>{{1e-3, 1e-4}};  // too soft to set a time step
+    config.time_step_rule = TimeStepRule::contacts;  // each step from the acting pairs' k over mass
+    config.time_step_safety = 0.1;
+    config.threads = threads;
+    config.adapt_threads = false;
+    Engine e(p, config);
+    for (int s = 0; s < 10; ++s) {
+      e.run(49);
+      energies.push_back(e.step_measured().strain_energy);
+    }
+    return e.packing();
+  };
+  std::vector<double> central_energy, full_energy;
+  const Packing central = run(cluster, 2, central_energy);
+  const Packing full = run(with_bond, 1, full_energy);
+  EXPECT_GT(central_energy.front(), 0.0);  // the cluster starts with overlaps
+  for (std::size_t s = 0; s < central_energy.size(); ++s) EXPECT_EQ(central_energy[s], full_energy[s]) << s;
+  double moved = 0.0;
+  for (std::size_t k = 0; k < cluster.size(); ++k) {
+    moved = std::max(moved, norm(central.position[k] - cluster.position[k]));
+    for (int ax = 0; ax < 3; ++ax) {
+      EXPECT_EQ(central.position[k][ax], full.position[k][ax]) << k;
+      EXPECT_EQ(central.velocity[k][ax], full.velocity[k][ax]) << k;
+    }
+  }
+  EXPECT_GT(moved, 0.1);
+  EXPECT_LT(norm(full.position[static_cast<std::size_t>(a)] - far), 1e-9);  // the bonded pair stayed away
+}

@@ -383,10 +383,12 @@ class Engine {
   void refresh_near_pairs();
   bool near_list_due() const;
   // Guarded: the crossing pairs' particles j may be moving (another thread integrating them).
-  template <class Law, bool OneType, bool Indirect, bool Guarded>
+  // Central: the law's evaluate_central (spin_free_ runs of a law that has it): only the
+  // positions, radii and masses are gathered, no history is read or written, no torque made.
+  template <class Law, bool OneType, bool Indirect, bool Guarded, bool Central>
   void gather_pairs(ContactModel<Law>& model, const int* pairs, const int* owners, int start, int count, int skip_from,
                     const std::uint8_t* crossing_acts, int& crossing_seen, PairBlock<Law>& block);
-  template <class Law, bool OneType, bool Measure>
+  template <class Law, bool OneType, bool Measure, bool Central>
   void contact_block(ContactModel<Law>& model, PairBlock<Law>& block);
   template <class BondLaw, bool Measure>
   void bond_contribution(BondModel<BondLaw>& model, std::size_t b, Contribution& out, ThreadWork& work,

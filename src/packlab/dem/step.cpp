@@ -201,7 +201,7 @@ struct PairBlock {
 // whose j >= skip_from were evaluated before (crossing pairs): their history is left alone
 // and they are listed, flagged, only if they acted, so that their kept result is added at
 // their place in the order.
-template <class Law, bool OneType, bool Indirect, bool Guarded>
+template <class Law, bool OneType, bool Indirect, bool Guarded, bool Central>
 void Engine::gather_pairs(ContactModel<Law>& model, const int* pairs, const int* owners, int start, int count,
                           int skip_from, const std::uint8_t* crossing_acts, int& crossing_seen, PairBlock<Law>& block) {
   const Vec3* __restrict x = particles_.position.data();
@@ -256,6 +256,16 @@ void Engine::gather_pairs(ContactModel<Law>& model, const int* pairs, const int*
     m += before ? acted_before : acts;
   }
   block.count = m;
+  if constexpr (Central) {  // no history, velocity or spin: the masses (the time step) alone
+    for (int c = 0; c < m; ++c) {
+      const int i = block.owner[c], j = Guarded && block.evaluated_before[c] ? i : block.other[c];
+      block.inverse_mass_i[c] = inverse_mass[i];
+      block.inverse_mass_j[c] = inverse_mass[j];
+      if constexpr (!OneType) block.params[c] = params[type[i] * type_count + type[j]];
+    }
+    if constexpr (OneType) block.params[0] = params[0];
+    return;
+  }
   // A pair out of range ends its history (crossing ones keep theirs); the acting ones are
   // given theirs after the evaluation.
   if constexpr (!Indirect) {
@@ -290,10 +300,36 @@ void Engine::gather_pairs(ContactModel<Law>& model, const int* pairs, const int*
 
 // The contact law over the gathered pairs: contiguous loads, the law inlined, selects instead
 // of branches, so the loop vectorizes. Writes the new histories back.
-template <class Law, bool OneType, bool Measure>
+template <class Law, bool OneType, bool Measure, bool Central>
 void Engine::contact_block(ContactModel<Law>& model, PairBlock<Law>& block) {
   const int count = block.count;
   const double dt = dt_;
+  if constexpr (Central) {
+#pragma GCC ivdep
+    for (int c = 0; c < count; ++c) {
+      const typename Law::Params pair_params = block.params[OneType ? 0 : c];
+      const double dist = std::sqrt(block.distance2[c]);
+      const double ri = block.radius_i[c], rj = block.radius_j[c];
+      ContactGeometry g{};
+      g.normal = Vec3{block.dx[c], block.dy[c], block.dz[c]} * (1.0 / dist);
+      g.overlap = ri + rj - dist;
+      g.dt = dt;
+      g.radius_i = ri;
+      g.radius_j = rj;
+      const PairForce f = Law::evaluate_central(g, pair_params);
+      block.force_x[c] = f.force_on_j.x;
+      block.force_y[c] = f.force_on_j.y;
+      block.force_z[c] = f.force_on_j.z;
+      block.stiffness[c] = f.stiffness;
+      block.stiffness_over_mass[c] = f.stiffness * std::max(block.inverse_mass_i[c], block.inverse_mass_j[c]);
+      if constexpr (Measure) {
+        block.energy[c] = f.energy;
+        block.force_norm[c] = norm(f.force_on_j);
+        block.overlap[c] = g.overlap;
+      }
+    }
+    return;
+  }
   auto* __restrict history = model.history.data();
   typename Law::History updated[PairBlock<Law>::capacity];
 #pragma GCC ivdep
@@ -417,6 +453,11 @@ void Engine::pair_forces(ContactModel<Law>& model, Totals& totals) {
   double* __restrict measure_energy = Measure ? measure_energy_.data() : nullptr;
   double* __restrict measure_force = Measure ? measure_force_.data() : nullptr;
   constexpr int capacity = PairBlock<Law>::capacity;
+  // No torque can act (spin_free_) and the law has a central form: evaluate only that.
+  constexpr bool has_central = requires(const ContactGeometry& g, const typename Law::Params& p) {
+    Law::evaluate_central(g, p);
+  };
+  const bool central = has_central && spin_free_;
   if (!walls_.empty()) wall_chunk_force_.resize(static_cast<std::size_t>(chunk_count(n)) * walls_.size());
 
   // What a pair or bond gives its owner and its other particle.
@@ -460,16 +501,27 @@ void Engine::pair_forces(ContactModel<Law>& model, Totals& totals) {
     const std::uint8_t* crossing_acts = work.crossing_pair_acts.empty() ? &no_crossing : work.crossing_pair_acts.data();
     int crossing_seen = 0;
     // Gathers and evaluates one block of listed pairs.
+    auto evaluate_block = [&]<bool Indirect, bool Guarded, bool Central>(const int* list, const int* owners, int start,
+                                                                         int count, int skip_from) {
+      if (one_type) {
+        gather_pairs<Law, true, Indirect, Guarded, Central>(model, list, owners, start, count, skip_from,
+                                                            crossing_acts, crossing_seen, block);
+        contact_block<Law, true, Measure, Central>(model, block);
+      } else {
+        gather_pairs<Law, false, Indirect, Guarded, Central>(model, list, owners, start, count, skip_from,
+                                                             crossing_acts, crossing_seen, block);
+        contact_block<Law, false, Measure, Central>(model, block);
+      }
+    };
     auto run_block = [&]<bool Indirect, bool Guarded>(const int* list, const int* owners, int start, int count,
                                                       int skip_from) {
-      if (one_type) {
-        gather_pairs<Law, true, Indirect, Guarded>(model, list, owners, start, count, skip_from, crossing_acts,
-                                                   crossing_seen, block);
-        contact_block<Law, true, Measure>(model, block);
+      if constexpr (has_central) {
+        if (central)
+          evaluate_block.template operator()<Indirect, Guarded, true>(list, owners, start, count, skip_from);
+        else
+          evaluate_block.template operator()<Indirect, Guarded, false>(list, owners, start, count, skip_from);
       } else {
-        gather_pairs<Law, false, Indirect, Guarded>(model, list, owners, start, count, skip_from, crossing_acts,
-                                                    crossing_seen, block);
-        contact_block<Law, false, Measure>(model, block);
+        evaluate_block.template operator()<Indirect, Guarded, false>(list, owners, start, count, skip_from);
       }
       for (int c = 0; c < block.count; ++c)
         if (!block.evaluated_before[c])
@@ -480,8 +532,10 @@ void Engine::pair_forces(ContactModel<Law>& model, Totals& totals) {
       Contribution r;
       r.particle_j = block.other[c];
       r.force_on_j = {block.force_x[c], block.force_y[c], block.force_z[c]};
-      r.torque_i = {block.torque_i_x[c], block.torque_i_y[c], block.torque_i_z[c]};
-      r.torque_j = {block.torque_j_x[c], block.torque_j_y[c], block.torque_j_z[c]};
+      if (!central) {  // else zero, as the law would give
+        r.torque_i = {block.torque_i_x[c], block.torque_i_y[c], block.torque_i_z[c]};
+        r.torque_j = {block.torque_j_x[c], block.torque_j_y[c], block.torque_j_z[c]};
+      }
       r.stiffness = block.stiffness[c];
       if constexpr (Measure) {
         r.energy = block.energy[c];
@@ -619,17 +673,16 @@ void Engine::pair_forces(ContactModel<Law>& model, Totals& totals) {
           continue;
         }
         const Vec3 f{block.force_x[c], block.force_y[c], block.force_z[c]};
-        const Vec3 torque_j{block.torque_j_x[c], block.torque_j_y[c], block.torque_j_z[c]};
         owner.force -= f;
-        owner.torque += Vec3{block.torque_i_x[c], block.torque_i_y[c], block.torque_i_z[c]};
+        if (!central) owner.torque += Vec3{block.torque_i_x[c], block.torque_i_y[c], block.torque_i_z[c]};
         if constexpr (SumRule) owner.stiffness += block.stiffness[c];
         if (j == i) {  // a self image: both sides are the owner, in the same order
           owner.force += f;
-          owner.torque += torque_j;
+          if (!central) owner.torque += Vec3{block.torque_j_x[c], block.torque_j_y[c], block.torque_j_z[c]};
           if constexpr (SumRule) owner.stiffness += block.stiffness[c];
         } else {
           force[j] += f;
-          torque[j] += torque_j;
+          if (!central) torque[j] += Vec3{block.torque_j_x[c], block.torque_j_y[c], block.torque_j_z[c]};
           if constexpr (SumRule) stiffness[j] += block.stiffness[c];
         }
         if constexpr (Measure) {

@@ -24,6 +24,12 @@
 //                                               touching contact linearized at its overlap
 //   static bool torque_free(const Params&);      true where the law can exert no torque
 //                                               (the integration may then skip the spins)
+//   static PairForce evaluate_central(const ContactGeometry&, const Params&);
+//                                               where torque_free holds for every pair of
+//                                               types: the force from g.normal, g.overlap,
+//                                               g.radius_i, g.radius_j and g.dt alone (no
+//                                               velocity, spin or history is gathered), the
+//                                               same numbers as evaluate() gives there
 //   static History reversed(const History&);    the history seen from the other particle
 //                                               (required unless History is a Vec3 along
 //                                               the pair from i to j, negated by default,

@@ -35,6 +35,18 @@ struct LinearContact {
     return {p.normal_stiffness, p.friction > 0.0 ? p.shear_stiffness : 0.0};
   }
 
+  // Without friction (torque_free): eq. 1 alone. evaluate() gives the same numbers there: its
+  // shear force is scaled to the Coulomb limit, zero, and adds a zero to the force and energy.
+  static PairForce evaluate_central(const ContactGeometry& g, const Params& p) {
+    const double normal_force = p.normal_stiffness * g.overlap;  // eq. 1
+    PairForce out{};  // no torque
+    out.force_on_j = normal_force * g.normal;
+    out.normal_force = normal_force;
+    out.energy = 0.5 * normal_force * g.overlap;
+    out.stiffness = std::max(p.normal_stiffness, p.shear_stiffness);
+    return out;
+  }
+
   static PairForce evaluate(const ContactGeometry& g, const Params& p, History& shear_force) {
     const Vec3& n = g.normal;
     const double normal_force = p.normal_stiffness * g.overlap;  // eq. 1
