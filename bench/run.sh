@@ -35,7 +35,7 @@ if [ -x "$PEERS/lammps-relax.sh" ]; then
   for t in 1 2; do
     if [ -n "${theirs[$t]:-}" ] && [ -n "${ours[$t]:-}" ]; then
       awk -v a="${ours[$t]}" -v b="${theirs[$t]}" -v t="$t" \
-        'BEGIN { printf "ratio packlab/LAMMPS (%d core%s): %.2f  (%.3g vs %.3g particle-steps/s)\n", t, t > 1 ? "s" : "", a / b, a, b }'
+        'BEGIN { printf "ratio packlab/LAMMPS (%d core%s): %.2f  (%.3g vs %.3g particle-steps/s)\n", t, (t > 1 ? "s" : ""), a / b, a, b }'
     fi
   done
   # Memory beside the peer's: LAMMPS's own estimate for the same case (bench/lammps_memory.sh).

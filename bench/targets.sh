@@ -30,14 +30,18 @@ awk '
   /^bench_vem / { vem_header = $0 }
   /^total: [0-9.]+ s,/ && vem_header ~ /threads=2/ && vem_header ~ /N_S=8000 N_V=2000/ { vem_total = $2 }
   /^expansion: [0-9]+ cycles/ && vem_header ~ /threads=2/ { vem_cycles = $2; vem_stop = $0; sub(/.*stop /, "", vem_stop) }
-  /^packlab static compress / { static_wall = kv($0, "wall_s"); static_n = kv($0, "N") }
+  /^packlab static compress / { static_wall = kv($0, "wall_s"); static_n = kv($0, "N"); static_breaks = kv($0, "breaks") }
   /^fba_summary / {
     if (kv($0, "schedule") == "momentum_0") { fba_classic = kv($0, "iterations_mean") }
     else if (kv($0, "schedule") == "momentum_0.9") { fba_now = kv($0, "iterations_mean"); fba_overlap = kv($0, "max_verified_overlap") }
   }
   /^fba_seed / { porosity[kv($0, "schedule")] = porosity[kv($0, "schedule")] " " kv($0, "porosity") }
   /^packlab ls scaling / { ls_ratio = kv($0, "cpu_ratio"); ls_events = kv($0, "events_ratio"); ls_event_cost = kv($0, "cpu_per_event_ratio") }
-  /^packlab ls N=/ { b = kv($0, "peak_bytes_per_particle"); if (b + 0 > ls_bytes + 0) ls_bytes = b }
+  /^packlab ls N=/ {
+    b = kv($0, "peak_bytes_per_particle")
+    if (b + 0 > ls_bytes + 0) { ls_bytes = b; ls_case = "N = " kv($0, "N") ", rate " kv($0, "rate") }
+    ls_all = ls_all (ls_all == "" ? "" : ", ") b
+  }
   /^packlab relax N=8000 steps=20000 / && relax_bytes == "" { relax_bytes = kv($0, "bytes_per_particle") }
   /^lammps relax memory N=/ { lammps_bytes = kv($0, "bytes_per_particle") }
   /^packlab compress N=/ { compress_bond_bytes = kv($0, "bytes_per_bond"); compress_particle_bytes = kv($0, "bytes_per_particle"); compress_n = kv($0, "N") }
@@ -54,7 +58,11 @@ awk '
     }
     row("2 threads (adaptive) / 1, one core kept busy", loaded == "" ? "-" : loaded "x", ">= 1", judge(loaded, 1, 1))
     row("VEM Fig. 1 case (8000 + 2000), 2 threads", vem_total == "" ? "- (BENCH_QUICK: 20 cycles only)" : vem_total " s, " vem_cycles " cycles, " vem_stop, "<= 120 s", judge(vem_total, 120, 0))
-    row("54k FCC opal to its peak (static solver)", static_wall == "" ? "-" : static_wall " s, N = " static_n, "<= 900 s", judge(static_wall, 900, 0))
+    if (static_breaks == "0") {  # make bench solves for E alone; the run to the peak is in docs/static-solver.md
+      row("54k FCC opal to its peak (static solver)", "- (E alone: " static_wall " s, N = " static_n ")", "<= 900 s", "not measured")
+    } else {
+      row("54k FCC opal to its peak (static solver)", static_wall == "" ? "-" : static_wall " s, N = " static_n ", " static_breaks " breaks", "<= 900 s", judge(static_wall, 900, 0))
+    }
     f = (fba_classic != "" && fba_now != "" && fba_now + 0 > 0) ? sprintf("%.1f", fba_classic / fba_now) : ""
     row("FBA 10^4 to porosity 0.38: fewer iterations", f == "" ? "-" : f "x (" fba_classic " -> " fba_now ")", ">= 3x", judge(f, 3, 1))
     if (f != "") {
@@ -65,6 +73,6 @@ awk '
     lm = (relax_bytes != "" && lammps_bytes != "") ? sprintf(" (LAMMPS %s B: %.2f of it)", lammps_bytes, relax_bytes / lammps_bytes) : ""
     row("engine memory per particle (relax)", relax_bytes == "" ? "-" : relax_bytes " B" lm, "<= 200 B", judge(relax_bytes, 200, 0))
     row("engine memory per bond (FCC opal compression)", compress_bond_bytes == "" ? "-" : compress_bond_bytes " B (" compress_particle_bytes " B per particle, N = " compress_n ")", "<= 100 B", judge(compress_bond_bytes, 100, 0))
-    row("LS memory per particle (largest at any moment)", ls_bytes == "" ? "-" : ls_bytes " B", "<= 200 B", judge(ls_bytes, 200, 0))
+    row("LS memory per particle (largest at any moment)", ls_bytes == "" ? "-" : ls_bytes " B (" ls_case "; every run: " ls_all ")", "<= 200 B", judge(ls_bytes, 200, 0))
   }
 ' "$LOG"
