@@ -256,80 +256,48 @@ void Engine::gather_pairs(ContactModel<Law>& model, const int* pairs, const int*
     m += before ? acted_before : acts;
   }
   block.count = m;
-  if constexpr (Central) {  // no history, velocity or spin: the masses (the time step) alone
-    for (int c = 0; c < m; ++c) {
-      const int i = block.owner[c], j = Guarded && block.evaluated_before[c] ? i : block.other[c];
-      block.inverse_mass_i[c] = inverse_mass[i];
-      block.inverse_mass_j[c] = inverse_mass[j];
-      if constexpr (!OneType) block.params[c] = params[type[i] * type_count + type[j]];
-    }
-    if constexpr (OneType) block.params[0] = params[0];
-    return;
-  }
   // A pair out of range ends its history (crossing ones keep theirs); the acting ones are
-  // given theirs after the evaluation.
-  if constexpr (!Indirect) {
+  // given theirs after the evaluation. The central form keeps no history.
+  if constexpr (Central) {
+  } else if constexpr (!Indirect) {
     auto* __restrict h = history + start;
     for (int k = 0; k < count; ++k) h[k] = block.keep_history[k] ? h[k] : History{};
   } else {
     for (int k = 0; k < count; ++k)
       if (!block.keep_history[k]) history[pairs[start + k]] = History{};
   }
-  // Pass 2, over the acting pairs: the rest of what the law reads.
+  // Pass 2, over the acting pairs: the rest of what the law reads (the central form: the
+  // masses, for the time step, and the parameters alone).
   for (int c = 0; c < m; ++c) {
     const int i = block.owner[c], j = Guarded && block.evaluated_before[c] ? i : block.other[c];
     block.inverse_mass_i[c] = inverse_mass[i];
     block.inverse_mass_j[c] = inverse_mass[j];
-    block.vix[c] = v[i].x;
-    block.viy[c] = v[i].y;
-    block.viz[c] = v[i].z;
-    block.vjx[c] = v[j].x;
-    block.vjy[c] = v[j].y;
-    block.vjz[c] = v[j].z;
-    block.wix[c] = w[i].x;
-    block.wiy[c] = w[i].y;
-    block.wiz[c] = w[i].z;
-    block.wjx[c] = w[j].x;
-    block.wjy[c] = w[j].y;
-    block.wjz[c] = w[j].z;
-    block.history[c] = history[block.pair[c]];
+    if constexpr (!Central) {
+      block.vix[c] = v[i].x;
+      block.viy[c] = v[i].y;
+      block.viz[c] = v[i].z;
+      block.vjx[c] = v[j].x;
+      block.vjy[c] = v[j].y;
+      block.vjz[c] = v[j].z;
+      block.wix[c] = w[i].x;
+      block.wiy[c] = w[i].y;
+      block.wiz[c] = w[i].z;
+      block.wjx[c] = w[j].x;
+      block.wjy[c] = w[j].y;
+      block.wjz[c] = w[j].z;
+      block.history[c] = history[block.pair[c]];
+    }
     if constexpr (!OneType) block.params[c] = params[type[i] * type_count + type[j]];
   }
   if constexpr (OneType) block.params[0] = params[0];
 }
 
 // The contact law over the gathered pairs: contiguous loads, the law inlined, selects instead
-// of branches, so the loop vectorizes. Writes the new histories back.
+// of branches, so the loop vectorizes. Writes the new histories back (the central form has none).
 template <class Law, bool OneType, bool Measure, bool Central>
 void Engine::contact_block(ContactModel<Law>& model, PairBlock<Law>& block) {
   const int count = block.count;
   const double dt = dt_;
-  if constexpr (Central) {
-#pragma GCC ivdep
-    for (int c = 0; c < count; ++c) {
-      const typename Law::Params pair_params = block.params[OneType ? 0 : c];
-      const double dist = std::sqrt(block.distance2[c]);
-      const double ri = block.radius_i[c], rj = block.radius_j[c];
-      ContactGeometry g{};
-      g.normal = Vec3{block.dx[c], block.dy[c], block.dz[c]} * (1.0 / dist);
-      g.overlap = ri + rj - dist;
-      g.dt = dt;
-      g.radius_i = ri;
-      g.radius_j = rj;
-      const PairForce f = Law::evaluate_central(g, pair_params);
-      block.force_x[c] = f.force_on_j.x;
-      block.force_y[c] = f.force_on_j.y;
-      block.force_z[c] = f.force_on_j.z;
-      block.stiffness[c] = f.stiffness;
-      block.stiffness_over_mass[c] = f.stiffness * std::max(block.inverse_mass_i[c], block.inverse_mass_j[c]);
-      if constexpr (Measure) {
-        block.energy[c] = f.energy;
-        block.force_norm[c] = norm(f.force_on_j);
-        block.overlap[c] = g.overlap;
-      }
-    }
-    return;
-  }
   auto* __restrict history = model.history.data();
   typename Law::History updated[PairBlock<Law>::capacity];
 #pragma GCC ivdep
@@ -340,33 +308,41 @@ void Engine::contact_block(ContactModel<Law>& model, PairBlock<Law>& block) {
     ContactGeometry g;
     g.normal = Vec3{block.dx[c], block.dy[c], block.dz[c]} * (1.0 / dist);
     g.overlap = ri + rj - dist;
-    g.branch_i = ri - 0.5 * g.overlap;
-    g.branch_j = rj - 0.5 * g.overlap;
-    const Vec3 wi{block.wix[c], block.wiy[c], block.wiz[c]}, wj{block.wjx[c], block.wjy[c], block.wjz[c]};
-    g.relative_velocity = Vec3{block.vjx[c], block.vjy[c], block.vjz[c]} -
-                          Vec3{block.vix[c], block.viy[c], block.viz[c]} -
-                          cross(g.branch_j * wj + g.branch_i * wi, g.normal);
-    g.mean_spin = 0.5 * (wi + wj);
-    g.dt = dt;
-    g.radius_i = ri;
-    g.radius_j = rj;
-    // Two fixed particles: 0, not infinity, so no NaN reaches them.
-    const double inverse_sum = block.inverse_mass_i[c] + block.inverse_mass_j[c];
-    g.effective_mass = 1.0 / std::max(inverse_sum, std::numeric_limits<double>::min()) * (inverse_sum > 0.0);
-    g.spin_i = wi;
-    g.spin_j = wj;
-    typename Law::History h = block.history[c];
-    const PairForce f = Law::evaluate(g, pair_params, h);
-    updated[c] = h;
+    PairForce f;
+    if constexpr (Central) {  // the law reads the normal, overlap, radii and time step alone
+      g.dt = dt;
+      g.radius_i = ri;
+      g.radius_j = rj;
+      f = Law::evaluate_central(g, pair_params);
+    } else {
+      g.branch_i = ri - 0.5 * g.overlap;
+      g.branch_j = rj - 0.5 * g.overlap;
+      const Vec3 wi{block.wix[c], block.wiy[c], block.wiz[c]}, wj{block.wjx[c], block.wjy[c], block.wjz[c]};
+      g.relative_velocity = Vec3{block.vjx[c], block.vjy[c], block.vjz[c]} -
+                            Vec3{block.vix[c], block.viy[c], block.viz[c]} -
+                            cross(g.branch_j * wj + g.branch_i * wi, g.normal);
+      g.mean_spin = 0.5 * (wi + wj);
+      g.dt = dt;
+      g.radius_i = ri;
+      g.radius_j = rj;
+      // Two fixed particles: 0, not infinity, so no NaN reaches them.
+      const double inverse_sum = block.inverse_mass_i[c] + block.inverse_mass_j[c];
+      g.effective_mass = 1.0 / std::max(inverse_sum, std::numeric_limits<double>::min()) * (inverse_sum > 0.0);
+      g.spin_i = wi;
+      g.spin_j = wj;
+      typename Law::History h = block.history[c];
+      f = Law::evaluate(g, pair_params, h);
+      updated[c] = h;
+      block.torque_i_x[c] = f.torque_i.x;
+      block.torque_i_y[c] = f.torque_i.y;
+      block.torque_i_z[c] = f.torque_i.z;
+      block.torque_j_x[c] = f.torque_j.x;
+      block.torque_j_y[c] = f.torque_j.y;
+      block.torque_j_z[c] = f.torque_j.z;
+    }
     block.force_x[c] = f.force_on_j.x;
     block.force_y[c] = f.force_on_j.y;
     block.force_z[c] = f.force_on_j.z;
-    block.torque_i_x[c] = f.torque_i.x;
-    block.torque_i_y[c] = f.torque_i.y;
-    block.torque_i_z[c] = f.torque_i.z;
-    block.torque_j_x[c] = f.torque_j.x;
-    block.torque_j_y[c] = f.torque_j.y;
-    block.torque_j_z[c] = f.torque_j.z;
     block.stiffness[c] = f.stiffness;
     block.stiffness_over_mass[c] = f.stiffness * std::max(block.inverse_mass_i[c], block.inverse_mass_j[c]);
     if constexpr (Measure) {
@@ -375,8 +351,9 @@ void Engine::contact_block(ContactModel<Law>& model, PairBlock<Law>& block) {
       block.overlap[c] = g.overlap;
     }
   }
-  for (int c = 0; c < count; ++c)
-    if (!block.evaluated_before[c]) history[block.pair[c]] = updated[c];
+  if constexpr (!Central)
+    for (int c = 0; c < count; ++c)
+      if (!block.evaluated_before[c]) history[block.pair[c]] = updated[c];
 }
 
 template <class BondLaw, bool Measure>
