@@ -4,11 +4,15 @@
 // end, and the most at any time, the temporaries of a block's start included) beside the
 // process's peak resident memory.
 // usage: bench_ls [N] [GROWTH_RATE] [TARGET_PHI (0 = jam)] [SIZE_RATIO (1 = mono)] [SMALL/LARGE VOLUME RATIO]
-//                 [MAX_PRESSURE] [SEED]
+//                 [MAX_PRESSURE] [SEED] [NEIGHBOR_LIST_LIMIT (LsParams' default; 0 = no limit)]
 // e.g.   bench_ls 10000 0.02            mono to jamming
 //        bench_ls 10000 0.02 0.6 0.313 0.333   bimodal case of the paper to c = 0.6
+//        bench_ls 10000 0.04 0 1 0.333 1e12 42 0   to jamming without the list-length limit
 // last line: packlab ls N=... phi=... wall_s=... ls_cpu_s=... collisions_per_cpu_s=... events_per_cpu_s=...
-//            bytes_per_particle=... peak_bytes_per_particle=...
+//            bytes_per_particle=... peak_bytes_per_particle=... peak_rss_per_particle=... list_limit=...
+//
+// With BENCH_LS_TRACE=1 in the environment, a line per block: trace block=... phi=... skin=...
+// neighbors=... bytes_per_particle=... peak_bytes_per_particle=...
 //
 //        bench_ls scaling N1 N2 GROWTH_RATE [SEED]
 // the same case (monodisperse, to jamming) at N1 and N2 particles in one run, then
@@ -40,7 +44,8 @@ struct Run {
   double phi = 0, wall = 0, bytes = 0, peak_bytes = 0;
 };
 
-Run run_case(long n, double rate, double target, double ratio, double vol_ratio, double pmax, unsigned long seed) {
+Run run_case(long n, double rate, double target, double ratio, double vol_ratio, double pmax, unsigned long seed,
+             double list_limit = generate::LsParams{}.neighbor_list_limit) {
   generate::SizeClasses classes;
   if (ratio != 1.0) {
     classes.sizes = {1.0, ratio};
@@ -54,10 +59,19 @@ Run run_case(long n, double rate, double target, double ratio, double vol_ratio,
   p.growth_rate = rate;
   p.target_volume_fraction = target;
   p.max_reduced_pressure = pmax;
+  p.neighbor_list_limit = list_limit;
   generate::LsSimulation sim(start.box, start.points, start.unit_radius, p, rng);
   long last_print = 0;
   Run r;
+  // BENCH_LS_TRACE=1: one line per block with the lists' mean length and the memory (docs/scrm.md).
+  const bool trace = std::getenv("BENCH_LS_TRACE") != nullptr;
   r.status = sim.run([&](const generate::LsStatus& st) {
+    if (trace)
+      fmt::print("trace block={} phi={:.4f} skin={:.4f} neighbors={:.2f} bytes_per_particle={:.1f} "
+                 "peak_bytes_per_particle={:.1f}\n",
+                 st.blocks, st.volume_fraction, sim.neighbor_skin(), sim.mean_neighbors(),
+                 static_cast<double>(sim.memory_bytes()) / static_cast<double>(n),
+                 static_cast<double>(sim.peak_memory_bytes()) / static_cast<double>(n));
     if (st.blocks - last_print >= 10) {
       last_print = st.blocks;
       fmt::print(stderr, "  block {} phi {:.6f} p {:.4g} collisions {} t {:.1f} s\n", st.blocks, st.volume_fraction,
@@ -79,9 +93,9 @@ Run run_case(long n, double rate, double target, double ratio, double vol_ratio,
   fmt::print(
       "packlab ls N={} rate={} phi={:.5f} collisions={} wall_s={:.2f} ls_cpu_s={:.2f} collisions_per_cpu_s={:.4g} "
       "events_per_cpu_s={:.4g} bytes_per_particle={:.0f} peak_bytes_per_particle={:.0f} "
-      "peak_rss_per_particle={:.0f}\n",
+      "peak_rss_per_particle={:.0f} list_limit={:g}\n",
       n, rate, r.phi, s.collisions, r.wall, s.cpu_seconds, static_cast<double>(s.collisions) / s.cpu_seconds,
-      static_cast<double>(s.events()) / s.cpu_seconds, r.bytes / dn, r.peak_bytes / dn, peak_rss_bytes() / dn);
+      static_cast<double>(s.events()) / s.cpu_seconds, r.bytes / dn, r.peak_bytes / dn, peak_rss_bytes() / dn, list_limit);
   std::fflush(stdout);
   return r;
 }
@@ -113,6 +127,7 @@ int main(int argc, char** argv) {
   const double vol_ratio = argc > 5 ? std::atof(argv[5]) : 0.333;
   const double pmax = argc > 6 ? std::atof(argv[6]) : 1e12;
   const unsigned long seed = argc > 7 ? std::strtoul(argv[7], nullptr, 10) : 42;
-  run_case(n, rate, target, ratio, vol_ratio, pmax, seed);
+  const double list_limit = argc > 8 ? std::atof(argv[8]) : generate::LsParams{}.neighbor_list_limit;
+  run_case(n, rate, target, ratio, vol_ratio, pmax, seed, list_limit);
   return 0;
 }

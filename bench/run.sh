@@ -99,6 +99,7 @@ run bench_micro --benchmark_min_time=0.2
 run bench_neighbor 8000 2000 0.4 200 1   # neighbour-list build, 10,000 particles (VEM stage I)
 run bench_neighbor 8000 2000 0.4 200 2
 run bench_ls 10000 0.04          # LS to jamming, 10^4 monodisperse (PackingGeneration: 87 s at rate 1e-2)
+run bench_ls 10000 0.04 0 1 0.333 1e12 42 0   # the same without the neighbour-list limit (docs/scrm.md)
 if [ "$quick" = 1 ]; then
   run bench_ls 10000 3           # fast compression (PackingGeneration: 22.7 s at rate 1e-1)
 fi

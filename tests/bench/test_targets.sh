@@ -19,7 +19,8 @@ total: 607.93 s, 1.214e+07 particle-steps/s
 packlab static compress N=53820 bonds=302217 threads=1 backend=cholmod breaks=30 wall_s=146.97 solver_bytes_per_bond=3325
 fba_summary schedule=momentum_0 N=10000 seeds=4 iterations_mean=17336 removal_iterations_mean=17300 max_verified_overlap=0.001
 fba_summary schedule=momentum_0.9 N=10000 seeds=4 iterations_mean=1240 removal_iterations_mean=1204 max_verified_overlap=0.0009999
-packlab ls N=10000 rate=0.04 phi=0.63810 bytes_per_particle=183 peak_bytes_per_particle=301 peak_rss_per_particle=812
+packlab ls N=10000 rate=0.04 phi=0.63878 bytes_per_particle=183 peak_bytes_per_particle=214 peak_rss_per_particle=812 list_limit=12
+packlab ls N=10000 rate=0.04 phi=0.63810 bytes_per_particle=183 peak_bytes_per_particle=301 peak_rss_per_particle=812 list_limit=0
 packlab ls N=10000 rate=3 phi=0.60719 bytes_per_particle=179 peak_bytes_per_particle=195 peak_rss_per_particle=793
 packlab ls N=100000 rate=3 phi=0.60290 bytes_per_particle=179 peak_bytes_per_particle=191 peak_rss_per_particle=427
 packlab ls scaling N1=10000 N2=100000 rate=3 cpu_s=3.97,79.86 cpu_ratio=20.13 n_ratio=10.00 events_ratio=12.13 cpu_per_event_ratio=1.66
@@ -53,7 +54,7 @@ expect "engine memory per particle" "367 B (LAMMPS 1401 B: 0.26 of it)"
 expect "engine memory per particle" "NOT met"
 expect "engine memory per bond" "98 B (300 B per particle, N = 53820)"
 expect "engine memory per bond" "| met"
-expect "LS memory per particle" "301 B (N = 10000, rate 0.04; every run: 301, 195, 191)"
+expect "LS memory per particle" "214 B (N = 10000, rate 0.04; every run: 214, 195, 191; without the list limit: 301)"
 expect "LS memory per particle" "NOT met"
 # make bench solves the 54k opal for E alone: no verdict on the run to the peak.
 sed -i 's/breaks=30 wall_s=146.97/breaks=0 wall_s=7.04/' "$TMP/log"

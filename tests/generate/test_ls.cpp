@@ -206,6 +206,9 @@ TEST(Ls, BadInputIsRejected) {
   p.growth_rate = 0.0;  // nothing would stop it
   EXPECT_THROW(p.validate(), InputError);
   p.growth_rate = 0.1;
+  p.neighbor_list_limit = -1.0;
+  EXPECT_THROW(p.validate(), InputError);
+  p.neighbor_list_limit = 12.0;
   // Four spheres at phi 0.6: the box is less than two diameters.
   EXPECT_THROW(make_sim(4, {}, 0.6, p, rng), InputError);
   // Overlapping start.
@@ -294,6 +297,10 @@ TEST(Ls, StateSavedBetweenBlocksResumesBitForBit) {
   resumed.save_state(end);
   LsSimulation finished = LsSimulation::load_state(end);
   EXPECT_EQ(finished.run().blocks, done.blocks);
+  // A state of the first layout (no layout tag: it began with the growth rate) is refused.
+  std::string old_layout = end.str().substr(sizeof(std::uint32_t));
+  std::istringstream old(old_layout);
+  EXPECT_THROW(LsSimulation::load_state(old), InputError);
 }
 
 // Issue #14's memory bound for LS, at most 200 bytes per sphere at any moment of a run to
@@ -313,4 +320,29 @@ TEST(Ls, NeighbourListsOfAFastCompressionStayWithinTwoHundredBytesPerSphere) {
   EXPECT_EQ(st.stop, generate::LsStop::jammed);
   EXPECT_LE(static_cast<double>(sim.peak_memory_bytes()) / static_cast<double>(n), 200.0);
   EXPECT_GE(generate::min_contact_ratio(sim.packing()), 1.0 - 1e-12);
+}
+
+// A slow growth from points: the skin grows to its upper bound while the gas is dilute, and by
+// volume fraction 0.1-0.25 the lists hold 40-45 neighbours per sphere unless the limit holds
+// them to the ideal-gas count it allows. The limit only moves the bounding spheres, so the
+// physics is the same: the run reaches its target without overlap either way.
+TEST(Ls, TheListLimitBoundsTheMemoryOfASlowGrowthFromPoints) {
+  const long n = 2000;
+  const auto peak_bytes = [&](double limit) {
+    Random rng(3);
+    generate::LsParams p;
+    p.growth_rate = 0.02;
+    p.target_volume_fraction = 0.3;
+    p.neighbor_list_limit = limit;
+    const generate::LsStart s = generate::make_ls_start(n, {}, 0.5, 0.64, rng);
+    generate::LsSimulation sim(s.box, s.points, s.unit_radius, p, rng);
+    EXPECT_EQ(sim.run().stop, generate::LsStop::target_reached);
+    EXPECT_GE(generate::min_contact_ratio(sim.packing()), 1.0 - 1e-12);
+    EXPECT_NEAR(sim.packing().volume_fraction(), 0.3, 1e-12);
+    return static_cast<double>(sim.peak_memory_bytes()) / static_cast<double>(n);
+  };
+  const double unlimited = peak_bytes(0.0), limited = peak_bytes(12.0);
+  // Fixed arrays about 150 bytes per sphere, a list entry 4 bytes plus its spare room.
+  EXPECT_GT(unlimited, 300.0);
+  EXPECT_LT(limited, 230.0);
 }

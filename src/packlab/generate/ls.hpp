@@ -29,7 +29,9 @@
 //    rebuilt from a cell grid of bounding-sphere centres (one grid per size class, so small
 //    spheres never scan cells sized for large ones). Near jamming spheres rattle far inside
 //    their bounding spheres and lists stay valid for whole blocks. The skin adapts per block:
-//    larger in the fluid (long free paths), down to 0.5 % of a diameter near jamming.
+//    larger in the fluid (long free paths), down to 0.5 % of a diameter near jamming, and at
+//    most what gives `neighbor_list_limit` neighbours per sphere in an ideal gas of bounding
+//    spheres at the block's start.
 //  - Blocks: after every `events_per_block` x N events all particles are brought to the same
 //    time, velocities are rescaled to kT (the boost heats the system), the reduced pressure
 //    p = PV/(NkT) of the block is measured from the collision virial (growth part excluded),
@@ -71,6 +73,12 @@ struct LsParams {
   double separation_boost = 2.0;         // b above, >= 1
   double neighbor_skin = 0.1;            // initial bounding sphere = radius + skin x diameter; adapted
                                          // per block so transfers stay 10-50 % of collisions
+  // Largest mean neighbour-list length the skin may give at a block's start, by the ideal-gas
+  // count of overlapping bounding spheres; 0 = no limit. Without it the skin of a slow growth from
+  // points reaches its upper bound in the dilute gas and the lists hold 30-45 entries per sphere
+  // at volume fractions 0.05-0.25 (the run's largest memory: 301 bytes per sphere at 10^4, G =
+  // 0.04, against 214 with 12; bench_ls, docs/scrm.md).
+  double neighbor_list_limit = 12.0;
   void validate() const;
 };
 
@@ -126,6 +134,10 @@ class LsSimulation {
   // time so far, the temporaries of a block's start (re-sort, list build) included.
   std::size_t memory_bytes() const;
   std::size_t peak_memory_bytes() const { return peak_bytes_; }
+  // Mean neighbour-list length per sphere now, and the skin in diameters at s_ref = max(s, 0.2)
+  // (both as adapted by the last block; bench_ls traces them per block).
+  double mean_neighbors() const;
+  double neighbor_skin() const { return skin_rel_; }
 
   // Collision time of two spheres, eq. (8): smallest t >= 0 with |dx + dv t| = sigma + sdot t,
   // where dx, dv are the separation and relative velocity; +inf when they never touch.

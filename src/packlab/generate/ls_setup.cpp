@@ -147,7 +147,15 @@ void LsSimulation::size_work_arrays() {
   next_.resize(n);
 }
 
+namespace {
+// The layout of the saved state: 2 since LsParams holds neighbor_list_limit (2026-12-02). The
+// first layout began with the growth rate, whose low four bytes are not 2 for any rate in use,
+// so an older checkpoint is refused with one message instead of being read shifted.
+constexpr std::uint32_t ls_state_layout = 2;
+}  // namespace
+
 void LsSimulation::save_state(std::ostream& out) const {
+  binary::write(out, ls_state_layout);
   binary::write(out, params_);
   binary::write(out, box_.lo);
   binary::write(out, box_.length);
@@ -179,6 +187,11 @@ void LsSimulation::save_state(std::ostream& out) const {
 LsSimulation LsSimulation::load_state(std::istream& in) {
   LsSimulation sim;
   std::uint8_t stopped = 0;
+  std::uint32_t layout = 0;
+  binary::read(in, layout, "LS state layout");
+  if (layout != ls_state_layout)
+    fail_input("checkpoint is from an older packlab (its Lubachevsky-Stillinger state has another layout); "
+               "start the run again");
   binary::read(in, sim.params_, "LS parameters");
   binary::read(in, sim.box_.lo, "box");
   binary::read(in, sim.box_.length, "box");
@@ -222,6 +235,12 @@ std::size_t LsSimulation::memory_bytes() const {
   return b;
 }
 
+double LsSimulation::mean_neighbors() const {
+  double sum = 0.0;
+  for (const std::uint16_t fill : list_fill_) sum += fill;
+  return body_.empty() ? 0.0 : sum / static_cast<double>(body_.size());
+}
+
 void LsSimulation::note_memory(std::size_t temporary_bytes) {
   peak_bytes_ = std::max(peak_bytes_, memory_bytes() + temporary_bytes);
 }
@@ -256,6 +275,23 @@ void LsSimulation::build_grids() {
   // Keep 2 x (largest bounding radius) within a quarter box.
   skin_rel_ = std::min(
       skin_rel_, std::max(0.005, (0.2 * l_min0 - class_rho_[0] * s_want) / (2.0 * class_rho_[0] * std::max(s0_, 0.2))));
+  // The list-length limit. Class k's bounding radius is rho_k (s + 2 skin_rel s_ref) = rho_k beta,
+  // so in an ideal gas a sphere of class k has sum_m n_m (4/3) pi (rho_k + rho_m)^3 beta^3
+  // neighbours (n_m: number density of class m); the mean over the spheres is C beta^3, and
+  // beta <= cbrt(limit / C) bounds the skin. Denser states hold more neighbours than the gas
+  // (the contact shell), and the per-block adaptation below keeps their lists short.
+  if (params_.neighbor_list_limit > 0.0) {
+    const double volume = box_.length.x * box_.length.y * box_.length.z;
+    double c = 0.0;
+    for (int k = 0; k < nclass_; ++k)
+      for (int m = 0; m < nclass_; ++m) {
+        const double sum = class_rho_[k] + class_rho_[m];
+        c += static_cast<double>(per_class[k]) * static_cast<double>(per_class[m]) * sum * sum * sum;
+      }
+    c *= 4.0 / 3.0 * std::numbers::pi / (static_cast<double>(body_.size()) * volume);
+    const double beta_max = std::cbrt(params_.neighbor_list_limit / c);
+    skin_rel_ = std::min(skin_rel_, std::max(0.005, (beta_max - s_want) / (2.0 * std::max(s0_, 0.2))));
+  }
   for (int k = 0; k < nclass_; ++k) skin_[k] = skin_rel_ * 2.0 * class_rho_[k] * std::max(s0_, 0.2);
   double s_cap = inf;
   for (int k = 0; k < nclass_; ++k) {

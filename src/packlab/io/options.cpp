@@ -226,7 +226,11 @@ void add_ls_params(ConfigSchema& schema, generate::LsParams& p) {
       .range({1.0, ranges::inf, true, true})
       .number("events_per_block", p.events_per_block,
               "Events per particle between velocity rescalings and pressure measurements")
-      .range({0.01, 1e6, false, false});
+      .range({0.01, 1e6, false, false})
+      .number("neighbor_list_limit", p.neighbor_list_limit,
+              "Largest mean neighbour-list length the skin may give at a block's start (ideal-gas estimate; bounds "
+              "the memory of slow growth); 0: no limit")
+      .range({0.0, 1000.0, false, false});
 }
 
 ConfigSchema ls_options(LsOptions& o) {
