@@ -72,12 +72,13 @@ struct LsParams {
   double max_events_per_particle = 1e7;  // safety limit
   double separation_boost = 2.0;         // b above, >= 1
   double neighbor_skin = 0.1;            // initial bounding sphere = radius + skin x diameter; adapted
-                                         // per block so transfers stay 10-50 % of collisions
+                                         // per block so transfers stay 10-50 % of collisions, and
+                                         // capped by neighbor_list_limit
   // Largest mean neighbour-list length the skin may give at a block's start, by the ideal-gas
   // count of overlapping bounding spheres; 0 = no limit. Without it the skin of a slow growth from
-  // points reaches its upper bound in the dilute gas and the lists hold 30-45 entries per sphere
-  // at volume fractions 0.05-0.25 (the run's largest memory: 301 bytes per sphere at 10^4, G =
-  // 0.04, against 214 with 12; bench_ls, docs/scrm.md).
+  // points reaches its upper bound in the dilute gas and the lists hold 23-44 neighbours per
+  // sphere at volume fractions 0.05-0.25 (the run's largest memory: 301 bytes per sphere at 10^4,
+  // G = 0.04, against 214 with 12; bench_ls, docs/scrm.md).
   double neighbor_list_limit = 12.0;
   void validate() const;
 };

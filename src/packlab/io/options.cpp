@@ -230,7 +230,8 @@ void add_ls_params(ConfigSchema& schema, generate::LsParams& p) {
       .number("neighbor_list_limit", p.neighbor_list_limit,
               "Largest mean neighbour-list length the skin may give at a block's start (ideal-gas estimate; bounds "
               "the memory of slow growth); 0: no limit")
-      .range({0.0, 1000.0, false, false});
+      .range({0.0, 1000.0, false, false})
+      .when_not_saved(0.0);  // runs recorded before the limit existed had none
 }
 
 ConfigSchema ls_options(LsOptions& o) {
