@@ -572,9 +572,7 @@ bool LsSimulation::run_block() {
   {  // adapt the skin: transfers cost a cell search, large lists cost every prediction
     const double c = static_cast<double>(status_.collisions - collisions0);
     const double t = static_cast<double>(status_.transfers - transfers0);
-    double fill = 0.0;
-    for (const std::uint16_t x : list_fill_) fill += x;
-    fill /= static_cast<double>(n);
+    const double fill = mean_neighbors();
     if (t > 0.5 * c && fill < 12.0)
       skin_rel_ = std::min(2.0, skin_rel_ * 1.5);
     else if (t < 0.1 * c || fill > 20.0)
