@@ -38,7 +38,7 @@
 //    particles are re-sorted along a Morton curve and all events are predicted anew.
 //  - Memory (bench_ls prints it per particle): a particle is one cache line with its class and
 //    collision counter; cells link their members (a head per cell, a next per particle); the
-//    neighbour lists are counted, then laid out with 1 + 1/8 spare entries each, and are freed
+//    neighbour lists are counted, then laid out with 1 + 1/16 spare entries each, and are freed
 //    while the particles are re-sorted.
 //  - Stops at the target volume fraction (exactly: the last block ends at the time where
 //    s^3 = phi), or at jamming: reduced pressure >= max_reduced_pressure (1e12 by default, the
@@ -210,6 +210,7 @@ class LsSimulation {
   bool run_block();  // false when stopped
   void sync_all(double t);
   void build_grids();
+  int cell_of(int i) const;
   void insert(int i);
   void remove(int i);
   void build_lists();
@@ -238,13 +239,13 @@ class LsSimulation {
   std::vector<Body> body_;
   std::vector<int> id_;  // original index
   std::vector<Event> ev_;
-  std::vector<int> cell_, next_;   // cell of i in its class grid, next member of that cell
+  std::vector<int> next_;          // next member of i's cell (cell_of(i)) in its class grid
   std::vector<Vec3> center_;       // bounding-sphere centres
   std::vector<double> bound_;      // bounding-sphere radii
   std::vector<double> skin_;       // per class: bounding radius - radius at build
   std::vector<double> bound_cap_;  // per class: largest bounding radius this block
   // Neighbour lists: one pool, each particle a segment [base, base + cap) of which fill are
-  // used; a full segment moves to the pool's end with twice the room (list_end_: first free).
+  // used; a full segment moves to the pool's end with 1.5 times the room (list_end_: first free).
   std::vector<std::uint32_t> list_base_;
   std::vector<std::uint16_t> list_fill_, list_cap_;
   EntryPool list_;  // entries j * 32 + image code

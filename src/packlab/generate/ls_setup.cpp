@@ -143,7 +143,6 @@ void LsSimulation::init(const Box& box, std::vector<Vec3> points, std::vector<do
 void LsSimulation::size_work_arrays() {
   const std::size_t n = body_.size();
   ev_.resize(n);
-  cell_.resize(n);
   next_.resize(n);
 }
 
@@ -228,7 +227,7 @@ LsSimulation LsSimulation::load_state(std::istream& in) {
 
 std::size_t LsSimulation::memory_bytes() const {
   std::size_t b = heap_bytes(class_rho_) + heap_bytes(reach_) + heap_bytes(body_) + heap_bytes(id_) + heap_bytes(ev_) +
-                  heap_bytes(cell_) + heap_bytes(next_) + heap_bytes(center_) + heap_bytes(bound_) + heap_bytes(skin_) +
+                  heap_bytes(next_) + heap_bytes(center_) + heap_bytes(bound_) + heap_bytes(skin_) +
                   heap_bytes(bound_cap_) + heap_bytes(list_cap_) + heap_bytes(list_base_) + heap_bytes(list_fill_) +
                   list_.size() * sizeof(std::uint32_t) + heap_bytes(hkey_) + heap_bytes(hid_) + heap_bytes(hpos_);
   for (const Grid& g : grid_) b += heap_bytes(g.head);
@@ -325,14 +324,11 @@ void LsSimulation::build_grids() {
     Grid& gr = grid_[k];
     gr.head.assign(static_cast<std::size_t>(gr.n[0]) * gr.n[1] * gr.n[2], -1);
   }
-  for (int i = static_cast<int>(body_.size()) - 1; i >= 0; --i) {
-    const Grid& gr = grid_[body_[i].cls];
-    int c[3];
-    for (int a = 0; a < 3; ++a)
-      c[a] = std::clamp(static_cast<int>(std::floor(body_[i].x[a] / gr.h[a])), 0, gr.n[a] - 1);
-    cell_[i] = c[0] + gr.n[0] * (c[1] + gr.n[1] * c[2]);
-    insert(i);
-  }
+  const std::size_t n = body_.size();
+  center_.resize(n);
+  bound_.resize(n);
+  for (std::size_t i = 0; i < n; ++i) center_[i] = body_[i].x;  // wrapped by sync_all
+  for (int i = static_cast<int>(n) - 1; i >= 0; --i) insert(i);
   // Block end: the target or the largest scale these cells allow.
   t_target_ = inf;
   const double phi_t = params_.target_volume_fraction;
