@@ -99,13 +99,18 @@ void LsSimulation::collide(Vec3& vi, Vec3& vj, const Vec3& n, double sigma_dot, 
 // ---------------------------------------------------------------------------------------------
 // Cells of bounding-sphere centres, one grid per class (built in ls_setup.cpp).
 
-// The cell of i's bounding-sphere centre in its class grid. Computed where it is needed instead
-// of stored (4 B per sphere, issue #14): the same centre always gives the same cell.
-int LsSimulation::cell_of(int i) const {
+// The cell coordinates of i's bounding-sphere centre in its class grid. Computed where they are
+// needed instead of stored (4 B per sphere, issue #14): the same centre always gives the same cell.
+void LsSimulation::cell_coords(int i, int c[3]) const {
   const Grid& gr = grid_[body_[i].cls];
   const Vec3& x = center_[i];
-  int c[3];
   for (int a = 0; a < 3; ++a) c[a] = std::clamp(static_cast<int>(std::floor(x[a] / gr.h[a])), 0, gr.n[a] - 1);
+}
+
+int LsSimulation::cell_of(int i) const {
+  const Grid& gr = grid_[body_[i].cls];
+  int c[3];
+  cell_coords(i, c);
   return c[0] + gr.n[0] * (c[1] + gr.n[1] * c[2]);
 }
 
@@ -147,8 +152,9 @@ std::size_t list_room(std::size_t fill) { return std::min<std::size_t>(65535, fi
 // unused). The pool keeps spare room for this (build_lists); when that is used up, the segments
 // are first packed together if the unused places add up to a thirty-second of the pool, else (or
 // if that is still not enough) the pool grows by a sixteenth, in place where realloc can (counted
-// in the peak). Packing keeps the largest memory of a 10^4-sphere run to jamming at 195 bytes per
-// sphere instead of 210 (issue #14: at most 200; bench_ls).
+// in the peak). Packing kept the largest memory of a 10^4-sphere run to jamming at G = 3 at 195
+// bytes per sphere instead of 210 before the cells were computed instead of stored (190 since;
+// issue #14: at most 200; bench_ls).
 void LsSimulation::relocate_list(int i) {
   const std::size_t cap = list_cap_[i];
   const std::size_t cap2 = std::max<std::size_t>(4, cap + cap / 2);
@@ -229,7 +235,7 @@ void LsSimulation::scan_neighbors(int i, bool only_greater, Visit&& visit) {
   const Grid& gk = grid_[k];
   const Vec3 xi = center_[i];
   int c[3];
-  for (int a = 0; a < 3; ++a) c[a] = std::clamp(static_cast<int>(std::floor(xi[a] / gk.h[a])), 0, gk.n[a] - 1);
+  cell_coords(i, c);
   const double bi = bound_[i];
   for (int m = 0; m < nclass_; ++m) {
     const Grid& gm = grid_[m];
@@ -283,6 +289,7 @@ void LsSimulation::build_lists() {
   const std::size_t n = body_.size();
   const double s = s0_;
   for (int c = 0; c < 27; ++c) offset_[c] = box_.shift_vector(image_of_code(c));
+  bound_.resize(n);
   for (std::size_t i = 0; i < n; ++i) bound_[i] = rho_of(body_[i]) * s + skin_[body_[i].cls];
   list_fill_.assign(n, 0);
   for (int i = 0; i < static_cast<int>(n); ++i)

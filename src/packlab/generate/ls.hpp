@@ -210,6 +210,7 @@ class LsSimulation {
   bool run_block();  // false when stopped
   void sync_all(double t);
   void build_grids();
+  void cell_coords(int i, int c[3]) const;
   int cell_of(int i) const;
   void insert(int i);
   void remove(int i);

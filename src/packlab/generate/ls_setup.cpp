@@ -326,7 +326,6 @@ void LsSimulation::build_grids() {
   }
   const std::size_t n = body_.size();
   center_.resize(n);
-  bound_.resize(n);
   for (std::size_t i = 0; i < n; ++i) center_[i] = body_[i].x;  // wrapped by sync_all
   for (int i = static_cast<int>(n) - 1; i >= 0; --i) insert(i);
   // Block end: the target or the largest scale these cells allow.
