@@ -152,9 +152,9 @@ std::size_t list_room(std::size_t fill) { return std::min<std::size_t>(65535, fi
 // unused). The pool keeps spare room for this (build_lists); when that is used up, the segments
 // are first packed together if the unused places add up to a thirty-second of the pool, else (or
 // if that is still not enough) the pool grows by a sixteenth, in place where realloc can (counted
-// in the peak). Packing kept the largest memory of a 10^4-sphere run to jamming at G = 3 at 195
-// bytes per sphere instead of 210 before the cells were computed instead of stored (190 since;
-// issue #14: at most 200; bench_ls).
+// in the peak). Packing brought the largest memory of a 10^4-sphere run to jamming at G = 3 from
+// 210 to 195 bytes per sphere (190 since the cells are computed, not stored; issue #14: at most
+// 200; bench_ls).
 void LsSimulation::relocate_list(int i) {
   const std::size_t cap = list_cap_[i];
   const std::size_t cap2 = std::max<std::size_t>(4, cap + cap / 2);
