@@ -102,20 +102,20 @@ void LsSimulation::collide(Vec3& vi, Vec3& vj, const Vec3& n, double sigma_dot, 
 // The cell coordinates of i's bounding-sphere centre in its class grid. Computed where they are
 // needed instead of stored (4 B per sphere, issue #14): the same centre always gives the same cell.
 void LsSimulation::cell_coords(int i, int c[3]) const {
-  const Grid& gr = grid_[body_[i].cls];
+  const Grid& gr = grid_[class_of(body_[i])];
   const Vec3& x = center_[i];
   for (int a = 0; a < 3; ++a) c[a] = std::clamp(static_cast<int>(std::floor(x[a] / gr.h[a])), 0, gr.n[a] - 1);
 }
 
 int LsSimulation::cell_of(int i) const {
-  const Grid& gr = grid_[body_[i].cls];
+  const Grid& gr = grid_[class_of(body_[i])];
   int c[3];
   cell_coords(i, c);
   return c[0] + gr.n[0] * (c[1] + gr.n[1] * c[2]);
 }
 
 void LsSimulation::insert(int i) {
-  Grid& gr = grid_[body_[i].cls];
+  Grid& gr = grid_[class_of(body_[i])];
   const int cell = cell_of(i);
   next_[i] = gr.head[cell];
   gr.head[cell] = i;
@@ -123,7 +123,7 @@ void LsSimulation::insert(int i) {
 
 // Before i's centre moves: the cell is found from it.
 void LsSimulation::remove(int i) {
-  Grid& gr = grid_[body_[i].cls];
+  Grid& gr = grid_[class_of(body_[i])];
   int* link = &gr.head[cell_of(i)];
   while (*link != i) link = &next_[*link];  // a cell holds a few particles
   *link = next_[i];
@@ -231,7 +231,7 @@ void LsSimulation::drop_neighbor(int i, std::uint32_t entry) {
 // with only_greater), in the order of the cell stencil.
 template <class Visit>
 void LsSimulation::scan_neighbors(int i, bool only_greater, Visit&& visit) {
-  const int k = body_[i].cls;
+  const int k = class_of(body_[i]);
   const Grid& gk = grid_[k];
   const Vec3 xi = center_[i];
   int c[3];
@@ -290,7 +290,7 @@ void LsSimulation::build_lists() {
   const double s = s0_;
   for (int c = 0; c < 27; ++c) offset_[c] = box_.shift_vector(image_of_code(c));
   bound_.resize(n);
-  for (std::size_t i = 0; i < n; ++i) bound_[i] = rho_of(body_[i]) * s + skin_[body_[i].cls];
+  for (std::size_t i = 0; i < n; ++i) bound_[i] = rho_of(body_[i]) * s + skin_[class_of(body_[i])];
   list_fill_.assign(n, 0);
   for (int i = 0; i < static_cast<int>(n); ++i)
     scan_neighbors(i, true, [&](int j, int) {
@@ -327,7 +327,7 @@ void LsSimulation::transfer(int i) {
   remove(i);
   b.x = box_.wrap(b.x);
   center_[i] = b.x;
-  bound_[i] = rho_of(b) * s_at(b.t) + skin_[b.cls];
+  bound_[i] = rho_of(b) * s_at(b.t) + skin_[class_of(b)];
   insert(i);
   find_neighbors(i, false);
 }
@@ -405,7 +405,7 @@ void LsSimulation::predict(int i) {
   // the L2 cache, at 10^5 particles and more, one after another each would cost a latency).
   for (int q = 0; q < fill; ++q) __builtin_prefetch(bodies + (l[q] >> 5));
   const double* rho = class_rho_.data();
-  const double rho_i = rho[bi.cls];
+  const double rho_i = rho[class_of(bi)];
   const double now = bi.t;
   const double g = params_.growth_rate;
   const double s = s_at(now);
@@ -443,7 +443,7 @@ void LsSimulation::predict(int i) {
     const Vec3 dx{bj.x.x + bj.v.x * dtj + off.x - bi.x.x, bj.x.y + bj.v.y * dtj + off.y - bi.x.y,
                   bj.x.z + bj.v.z * dtj + off.z - bi.x.z};
     const Vec3 dv = bj.v - bi.v;
-    const double sig1 = rho_i + rho[bj.cls];
+    const double sig1 = rho_i + rho[class_of(bj)];
     const double tau = collision_time_below(dx, dv, sig1 * s, sig1 * g, best - now);
     // A collision after j's own next event is left to j: j predicts again then.
     if (now + tau < best && now + tau <= event_time(j)) {
@@ -453,7 +453,7 @@ void LsSimulation::predict(int i) {
   }
   Event& e = ev_[i];
   e.partner = partner;
-  e.count = partner >= 0 ? body_[partner].count : 0;
+  e.stamp = partner >= 0 ? body_[partner].stamp : 0;
   if (hid_.empty())
     hkey_[i] = best;  // a block starts: by particle (heap_build)
   else
@@ -491,18 +491,15 @@ void LsSimulation::start_block() {
     for (std::size_t k = 0; k < n; ++k) {
       if (order[k] < 0) continue;
       const Body b0 = body_[k];
-      const int id0 = id_[k];
       std::size_t q = k;
       for (;;) {
         const auto from = static_cast<std::size_t>(order[q]);
         order[q] = -1 - order[q];
         if (from == k) {
           body_[q] = b0;
-          id_[q] = id0;
           break;
         }
         body_[q] = body_[from];
-        id_[q] = id_[from];
         q = from;
       }
     }
@@ -545,7 +542,7 @@ bool LsSimulation::run_block() {
     Body& bi = bodies[i];
     if (e.partner >= 0) {
       const int j = e.partner;
-      if (body_[j].count != e.count) {  // partner changed velocity since: predict again
+      if (body_[j].stamp != e.stamp) {  // partner changed velocity since: predict again
         ++status_.stale;
         bi.x += bi.v * (now - bi.t);
         bi.t = now;
@@ -571,8 +568,8 @@ bool LsSimulation::run_block() {
       const double u = dot(bj.v - bi.v, nrm);
       virial_ += std::abs(u) * r;  // exchanged momentum (unit masses) times distance, growth part excluded
       collide(bi.v, bj.v, nrm, sig1 * g, boost);
-      ++body_[i].count;
-      ++body_[j].count;
+      body_[i].stamp += collision_step;
+      body_[j].stamp += collision_step;
       ++status_.collisions;
       ++done;
       predict(i);

@@ -152,9 +152,16 @@ class LsSimulation {
     Vec3 x;                  // position at time t (box coordinates relative to box.lo)
     double t;                // time stamp
     Vec3 v;
-    std::uint32_t count;  // collisions so far (invalidates the partners' predictions)
-    int cls;              // size class: radius at s = 1 is class_rho_[cls]
+    // Collisions so far times 64 plus the size class (< 64; radius at s = 1 is class_rho_[class])
+    // in the low six bits. A new stamp invalidates the partners' predictions; those live within
+    // one block (every block predicts anew), so the 26 bits of count cannot wrap where it matters.
+    // The class needs no word of its own, which leaves the line room for the index (4 B per
+    // sphere less, issue #14).
+    std::uint32_t stamp;
+    int id;  // original index
   };
+  static constexpr std::uint32_t class_bits = 6, collision_step = 1u << class_bits;
+  static int class_of(const Body& b) { return static_cast<int>(b.stamp & (collision_step - 1)); }
   struct SavedBody {  // the checkpoint's layout of a particle (radius at s = 1 in place of class and count)
     Vec3 x;
     double t;
@@ -163,7 +170,7 @@ class LsSimulation {
   };
   struct Event {          // the time is the calendar's key (event_time)
     int partner;          // >= 0 collision partner; -1 transfer; -2 none
-    std::uint32_t count;  // partner's collision counter at prediction
+    std::uint32_t stamp;  // partner's stamp at prediction
   };
   // Neighbour-list entries in one malloc'd block grown by realloc: glibc moves the pages of a
   // large block instead of copying it, so the pool never exists twice while it grows.
@@ -229,7 +236,7 @@ class LsSimulation {
   // Time of i's pending event (the calendar's key; by particle while a block starts).
   double event_time(int j) const { return hkey_[static_cast<std::size_t>(hpos_[j])]; }
   double s_at(double t) const { return s0_ + params_.growth_rate * t; }
-  double rho_of(const Body& b) const { return class_rho_[b.cls]; }
+  double rho_of(const Body& b) const { return class_rho_[class_of(b)]; }
 
   LsParams params_;
   Box box_;
@@ -238,7 +245,6 @@ class LsSimulation {
   std::vector<double> class_rho_;  // radius at s = 1 per class
   std::vector<double> reach_;      // nclass x nclass: largest bounding-sphere reach this block
   std::vector<Body> body_;
-  std::vector<int> id_;  // original index
   std::vector<Event> ev_;
   std::vector<int> next_;          // next member of i's cell (cell_of(i)) in its class grid
   std::vector<Vec3> center_;       // bounding-sphere centres

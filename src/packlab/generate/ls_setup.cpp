@@ -51,7 +51,7 @@ LsSimulation::LsSimulation(const Packing& start, const LsParams& params, Random&
     bool any = false;
     for (const auto& v : start.velocity) any = any || norm2(v) > 0.0;
     if (any) {
-      for (std::size_t i = 0; i < body_.size(); ++i) body_[i].v = start.velocity[id_[i]];
+      for (std::size_t i = 0; i < body_.size(); ++i) body_[i].v = start.velocity[body_[i].id];
       double sum = 0.0;
       for (const auto& b : body_) sum += norm2(b.v);
       const double f = std::sqrt(3.0 * static_cast<double>(body_.size()) * v_thermal_ * v_thermal_ / sum);
@@ -94,19 +94,17 @@ void LsSimulation::init(const Box& box, std::vector<Vec3> points, std::vector<do
                            class_rho_.size()));
   nclass_ = static_cast<int>(class_rho_.size());
   body_.resize(n);
-  id_.resize(n);
   size_work_arrays();
   double volume = 0.0;
   for (std::size_t i = 0; i < n; ++i) {
     Body& b = body_[i];
     b.x = box_.wrap(points[i] - origin_);
     b.t = 0.0;
-    b.count = 0;
     int k = 0;
     while (k + 1 < nclass_ && unit_radius[i] < class_rho_[k] * (1.0 - 1e-12)) ++k;
-    b.cls = k;
+    b.stamp = static_cast<std::uint32_t>(k);  // no collision yet
+    b.id = static_cast<int>(i);
     const double rho = class_rho_[k];
-    id_[i] = static_cast<int>(i);
     volume += 4.0 / 3.0 * std::numbers::pi * rho * rho * rho;
   }
   phi1_ = volume / box_.volume();
@@ -168,16 +166,18 @@ void LsSimulation::save_state(std::ostream& out) const {
   const std::size_t n = body_.size();
   std::vector<SavedBody> saved(n);
   std::vector<int> cls(n);
+  std::vector<int> id(n);
   std::vector<std::uint32_t> count(n);
   for (std::size_t i = 0; i < n; ++i) {
     const Body& b = body_[i];
     saved[i] = SavedBody{b.x, b.t, b.v, rho_of(b)};
-    cls[i] = b.cls;
-    count[i] = b.count;
+    cls[i] = class_of(b);
+    id[i] = b.id;
+    count[i] = b.stamp >> class_bits;
   }
   binary::write_vector(out, saved);
   binary::write_vector(out, cls);
-  binary::write_vector(out, id_);
+  binary::write_vector(out, id);
   binary::write_vector(out, count);
   binary::write(out, status_);
   binary::write(out, static_cast<std::uint8_t>(stopped_));
@@ -201,11 +201,11 @@ LsSimulation LsSimulation::load_state(std::istream& in) {
   binary::read(in, sim.s0_, "scale");
   binary::read(in, sim.skin_rel_, "skin");
   std::vector<SavedBody> saved;
-  std::vector<int> cls;
+  std::vector<int> cls, id;
   std::vector<std::uint32_t> count;
   binary::read_vector(in, saved, "particles");
   binary::read_vector(in, cls, "classes");
-  binary::read_vector(in, sim.id_, "particle ids");
+  binary::read_vector(in, id, "particle ids");
   binary::read_vector(in, count, "collision counters");
   binary::read(in, sim.status_, "status");
   binary::read(in, stopped, "stop flag");
@@ -213,20 +213,22 @@ LsSimulation LsSimulation::load_state(std::istream& in) {
   sim.box_.periodic = {true, true, true};
   sim.nclass_ = static_cast<int>(sim.class_rho_.size());
   const std::size_t n = saved.size();
-  bool ok = n >= 2 && sim.nclass_ >= 1 && cls.size() == n && sim.id_.size() == n && count.size() == n;
+  bool ok = n >= 2 && sim.nclass_ >= 1 && cls.size() == n && id.size() == n && count.size() == n;
   for (std::size_t i = 0; ok && i < n; ++i)
-    ok = cls[i] >= 0 && cls[i] < sim.nclass_ && sim.id_[i] >= 0 && static_cast<std::size_t>(sim.id_[i]) < n &&
+    ok = cls[i] >= 0 && cls[i] < sim.nclass_ && id[i] >= 0 && static_cast<std::size_t>(id[i]) < n &&
          saved[i].rho == sim.class_rho_[static_cast<std::size_t>(cls[i])];
   if (!ok) fail_input("checkpoint is damaged: Lubachevsky-Stillinger state out of range");
   sim.body_.resize(n);
-  for (std::size_t i = 0; i < n; ++i) sim.body_[i] = Body{saved[i].x, saved[i].t, saved[i].v, count[i], cls[i]};
+  for (std::size_t i = 0; i < n; ++i)
+    sim.body_[i] = Body{saved[i].x, saved[i].t, saved[i].v,
+                        (count[i] << class_bits) | static_cast<std::uint32_t>(cls[i]), id[i]};
   sim.stopped_ = stopped != 0;
   sim.size_work_arrays();
   return sim;
 }
 
 std::size_t LsSimulation::memory_bytes() const {
-  std::size_t b = heap_bytes(class_rho_) + heap_bytes(reach_) + heap_bytes(body_) + heap_bytes(id_) + heap_bytes(ev_) +
+  std::size_t b = heap_bytes(class_rho_) + heap_bytes(reach_) + heap_bytes(body_) + heap_bytes(ev_) +
                   heap_bytes(next_) + heap_bytes(center_) + heap_bytes(bound_) + heap_bytes(skin_) +
                   heap_bytes(bound_cap_) + heap_bytes(list_cap_) + heap_bytes(list_base_) + heap_bytes(list_fill_) +
                   list_.size() * sizeof(std::uint32_t) + heap_bytes(hkey_) + heap_bytes(hid_) + heap_bytes(hpos_);
@@ -253,7 +255,7 @@ void LsSimulation::set_params(const LsParams& params) {
 void LsSimulation::set_positions(const std::vector<Vec3>& position) {
   if (position.size() != body_.size()) throw std::logic_error("LsSimulation::set_positions: wrong particle count");
   for (std::size_t i = 0; i < body_.size(); ++i) {
-    body_[i].x = box_.wrap(position[id_[i]] - origin_);
+    body_[i].x = box_.wrap(position[body_[i].id] - origin_);
     body_[i].t = 0.0;
   }
 }
@@ -265,7 +267,7 @@ void LsSimulation::build_grids() {
   const double g = params_.growth_rate;
   const double s_want = g > 0.0 ? s0_ * 1.02 : s0_;
   std::vector<long> per_class(nclass_, 0);
-  for (const Body& b : body_) ++per_class[b.cls];
+  for (const Body& b : body_) ++per_class[class_of(b)];
   grid_.resize(nclass_);
   skin_.assign(nclass_, 0.0);
   bound_cap_.assign(nclass_, 0.0);
@@ -352,7 +354,7 @@ Packing LsSimulation::packing() {
   p.velocity.resize(n);
   for (std::size_t i = 0; i < n; ++i) {
     const Body& b = body_[i];
-    const int o = id_[i];
+    const int o = b.id;
     p.position[o] = box.wrap(b.x + b.v * (0.0 - b.t) + origin_);
     p.radius[o] = rho_of(b) * s0_;
     p.velocity[o] = b.v;
