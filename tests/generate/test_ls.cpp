@@ -346,3 +346,24 @@ TEST(Ls, TheListLimitBoundsTheMemoryOfASlowGrowthFromPoints) {
   EXPECT_GT(unlimited, 300.0);
   EXPECT_LT(limited, 230.0);
 }
+
+// The dense fluid holds more neighbours than the ideal gas that the cap at a block's start counts
+// (its contact shell): growing the bimodal packs of the paper to c = 0.6 under a limit of 12, the
+// lists ended with 13.55 neighbours per sphere before the blocks' ends were bounded too (12.30
+// since, bench_ls 2000 0.05 0.6 0.313 0.333).
+TEST(Ls, TheListLimitHoldsInTheDenseFluid) {
+  Random rng(42);
+  generate::SizeClasses classes;
+  classes.sizes = {1.0, 0.313};
+  classes.fractions = {1.0, 0.333};
+  classes.volume_fractions = true;
+  const generate::LsStart s = generate::make_ls_start(2000, classes, 0.5, 0.6, rng);
+  generate::LsParams p;
+  p.growth_rate = 0.05;
+  p.target_volume_fraction = 0.6;
+  p.neighbor_list_limit = 12.0;
+  generate::LsSimulation sim(s.box, s.points, s.unit_radius, p, rng);
+  EXPECT_EQ(sim.run().stop, generate::LsStop::target_reached);
+  EXPECT_LT(sim.mean_neighbors(), 1.05 * p.neighbor_list_limit);
+  EXPECT_GE(generate::min_contact_ratio(sim.packing()), 1.0 - 1e-12);
+}

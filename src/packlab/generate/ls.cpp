@@ -181,7 +181,8 @@ void LsSimulation::relocate_list(int i) {
 // reaches its largest memory (issue #14); a window's index holds about an eighth of it. At 10^4
 // spheres the largest memory fell by 3.5-4 B per sphere (G = 3: 186 -> 182, G = 0.04: 200.0 ->
 // 196.6, bimodal to c = 0.6: 208 -> 205) for eight scans of the bases per pack: the bimodal run
-// packs 3,400 times and took 21.9 against 21.3 CPU s (mean of 4 alternating runs each, bench_ls).
+// packs 3,400 times and took 22.55 against 21.35 CPU s (5 alternating runs each, bench_ls; 21.92 against
+// 21.44 without the first pair, 25.06 / 20.99).
 void LsSimulation::pack_lists() {
   const std::size_t n = body_.size();
   std::size_t used = 0;
@@ -610,10 +611,23 @@ bool LsSimulation::run_block() {
     const double c = static_cast<double>(status_.collisions - collisions0);
     const double t = static_cast<double>(status_.transfers - transfers0);
     const double fill = mean_neighbors();
+    const double skin_block = skin_rel_;
     if (t > 0.5 * c && fill < 12.0)
       skin_rel_ = std::min(2.0, skin_rel_ * 1.5);
     else if (t < 0.1 * c || fill > 20.0)
       skin_rel_ = std::max(0.005, skin_rel_ * 0.8);
+    // The list-length limit, from the lists the block ended with. The cap at a block's start
+    // (build_grids) counts an ideal gas of bounding spheres, and the dense fluid holds more (its
+    // contact shell): 13.5 per sphere at the end of the bimodal growth to c = 0.6 under a limit of
+    // 12 (205 B per sphere). The block's bounding radius per unit radius, beta = s + 2 skin s_ref
+    // (s at the block's end, the block's skin), is scaled by cbrt(limit / fill) as the gas's count
+    // would be: this shrinks an over-full skin and keeps a growing one from overshooting.
+    if (params_.neighbor_list_limit > 0.0 && fill > 0.0) {
+      const double s_end = s_at(now);
+      const double beta = s_end + 2.0 * skin_block * std::max(s0_, 0.2);
+      const double beta_limit = beta * std::cbrt(params_.neighbor_list_limit / fill);
+      skin_rel_ = std::min(skin_rel_, std::max(0.005, (beta_limit - s_end) / (2.0 * std::max(s_end, 0.2))));
+    }
   }
   status_.time += now;
   ++status_.blocks;

@@ -31,14 +31,16 @@
 //    their bounding spheres and lists stay valid for whole blocks. The skin adapts per block:
 //    larger in the fluid (long free paths), down to 0.5 % of a diameter near jamming, and at
 //    most what gives `neighbor_list_limit` neighbours per sphere in an ideal gas of bounding
-//    spheres at the block's start.
+//    spheres at the block's start and, scaled from the lists the last block ended with, in the
+//    dense fluid (which holds more than the gas).
 //  - Blocks: after every `events_per_block` x N events all particles are brought to the same
 //    time, velocities are rescaled to kT (the boost heats the system), the reduced pressure
 //    p = PV/(NkT) of the block is measured from the collision virial (growth part excluded),
 //    particles are re-sorted along a Morton curve and all events are predicted anew.
-//  - Memory (bench_ls prints it per particle): a particle is one cache line with its class and
-//    collision counter; cells link their members (a head per cell, a next per particle); the
-//    neighbour lists are counted, then laid out with 1 + 1/16 spare entries each, and are freed
+//  - Memory (bench_ls prints it per particle): a particle is one cache line with its class,
+//    collision counter and index; cells link their members (a head per cell, a next per
+//    particle); the neighbour lists are counted, then laid out with 1 + 1/16 spare entries each,
+//    packed in place when relocations leave a thirty-second of the pool unused, and are freed
 //    while the particles are re-sorted.
 //  - Stops at the target volume fraction (exactly: the last block ends at the time where
 //    s^3 = phi), or at jamming: reduced pressure >= max_reduced_pressure (1e12 by default, the
@@ -78,7 +80,8 @@ struct LsParams {
   // count of overlapping bounding spheres; 0 = no limit. Without it the skin of a slow growth from
   // points reaches its upper bound in the dilute gas and the lists hold 23-44 neighbours per
   // sphere at volume fractions 0.05-0.25 (the run's largest memory: 301 bytes per sphere at 10^4,
-  // G = 0.04, against 214 with 12; bench_ls, docs/scrm.md).
+  // G = 0.04, against 214 with 12; bench_ls, docs/scrm.md). Applied at a block's start (the
+  // ideal-gas count) and to the lists a block ends with (the dense fluid's count).
   double neighbor_list_limit = 12.0;
   void validate() const;
 };

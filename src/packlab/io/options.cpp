@@ -228,8 +228,8 @@ void add_ls_params(ConfigSchema& schema, generate::LsParams& p) {
               "Events per particle between velocity rescalings and pressure measurements")
       .range({0.01, 1e6, false, false})
       .number("neighbor_list_limit", p.neighbor_list_limit,
-              "Largest mean neighbour-list length the skin may give at a block's start (ideal-gas estimate; bounds "
-              "the memory of slow growth); 0: no limit")
+              "Largest mean neighbour-list length the skin may give (an ideal-gas estimate at a block's start, and "
+              "the lists a block ended with; bounds the memory of slow growth); 0: no limit")
       .range({0.0, 1000.0, false, false})
       .when_not_saved(0.0);  // runs recorded before the limit existed had none
 }
