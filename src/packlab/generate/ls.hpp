@@ -157,7 +157,8 @@ class LsSimulation {
     Vec3 v;
     // Collisions so far times 64 plus the size class (< 64; radius at s = 1 is class_rho_[class])
     // in the low six bits. A new stamp invalidates the partners' predictions; those live within
-    // one block (every block predicts anew), so the 26 bits of count cannot wrap where it matters.
+    // one block (every block predicts anew), so a stale one would pass only after exactly 2^26
+    // collisions of its partner within a block (of 20 events per sphere).
     // The class needs no word of its own, which leaves the line room for the index (4 B per
     // sphere less, issue #14).
     std::uint32_t stamp;
