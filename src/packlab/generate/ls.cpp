@@ -624,9 +624,9 @@ bool LsSimulation::run_block() {
     // would be: this shrinks an over-full skin and keeps a growing one from overshooting.
     if (params_.neighbor_list_limit > 0.0 && fill > 0.0) {
       const double s_end = s_at(now);
-      const double beta = s_end + 2.0 * skin_block * std::max(s0_, 0.2);
+      const double beta = s_end + 2.0 * skin_block * skin_scale(s0_);
       const double beta_limit = beta * std::cbrt(params_.neighbor_list_limit / fill);
-      skin_rel_ = std::min(skin_rel_, std::max(0.005, (beta_limit - s_end) / (2.0 * std::max(s_end, 0.2))));
+      skin_rel_ = std::min(skin_rel_, std::max(0.005, (beta_limit - s_end) / (2.0 * skin_scale(s_end))));
     }
   }
   status_.time += now;

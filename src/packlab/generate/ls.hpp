@@ -49,6 +49,7 @@
 //    distance has its radii scaled down by that factor (reported; of order 1e-15).
 #pragma once
 
+#include <algorithm>
 #include <array>
 #include <cstdint>
 #include <cstdlib>
@@ -165,6 +166,7 @@ class LsSimulation {
     int id;  // original index
   };
   static constexpr std::uint32_t class_bits = 6, collision_step = 1u << class_bits;
+  static constexpr std::size_t max_classes = collision_step;  // what the stamp's class bits hold
   static int class_of(const Body& b) { return static_cast<int>(b.stamp & (collision_step - 1)); }
   struct SavedBody {  // the checkpoint's layout of a particle (radius at s = 1 in place of class and count)
     Vec3 x;
@@ -240,6 +242,9 @@ class LsSimulation {
   // Time of i's pending event (the calendar's key; by particle while a block starts).
   double event_time(int j) const { return hkey_[static_cast<std::size_t>(hpos_[j])]; }
   double s_at(double t) const { return s0_ + params_.growth_rate * t; }
+  // The scale the skin is relative to: the diameters at s, at least those of s = 0.2 (a growth
+  // from points would otherwise start with no skin). skin_[k] = skin_rel_ 2 rho_k skin_scale(s0_).
+  static double skin_scale(double s) { return std::max(s, 0.2); }
   double rho_of(const Body& b) const { return class_rho_[class_of(b)]; }
 
   LsParams params_;

@@ -89,9 +89,9 @@ void LsSimulation::init(const Box& box, std::vector<Vec3> points, std::vector<do
   class_rho_.clear();
   for (double r : distinct)
     if (class_rho_.empty() || r < class_rho_.back() * (1.0 - 1e-12)) class_rho_.push_back(r);
-  if (class_rho_.size() > 64)
-    fail_input(fmt::format("distinct radii = {}: Lubachevsky-Stillinger growth supports at most 64 size classes",
-                           class_rho_.size()));
+  if (class_rho_.size() > max_classes)
+    fail_input(fmt::format("distinct radii = {}: Lubachevsky-Stillinger growth supports at most {} size classes",
+                           class_rho_.size(), max_classes));
   nclass_ = static_cast<int>(class_rho_.size());
   body_.resize(n);
   size_work_arrays();
@@ -195,7 +195,7 @@ LsSimulation LsSimulation::load_state(std::istream& in) {
   binary::read(in, sim.box_.lo, "box");
   binary::read(in, sim.box_.length, "box");
   binary::read(in, sim.origin_, "box origin");
-  binary::read_vector(in, sim.class_rho_, "size classes", 64);
+  binary::read_vector(in, sim.class_rho_, "size classes", max_classes);
   binary::read(in, sim.phi1_, "volume fraction at s = 1");
   binary::read(in, sim.v_thermal_, "thermal speed");
   binary::read(in, sim.s0_, "scale");
@@ -220,8 +220,8 @@ LsSimulation LsSimulation::load_state(std::istream& in) {
   if (!ok) fail_input("checkpoint is damaged: Lubachevsky-Stillinger state out of range");
   sim.body_.resize(n);
   for (std::size_t i = 0; i < n; ++i)
-    sim.body_[i] = Body{saved[i].x, saved[i].t, saved[i].v,
-                        (count[i] << class_bits) | static_cast<std::uint32_t>(cls[i]), id[i]};
+    sim.body_[i] =
+        Body{saved[i].x, saved[i].t, saved[i].v, (count[i] << class_bits) | static_cast<std::uint32_t>(cls[i]), id[i]};
   sim.stopped_ = stopped != 0;
   sim.size_work_arrays();
   return sim;
@@ -275,7 +275,7 @@ void LsSimulation::build_grids() {
   const double l_min0 = std::min({box_.length.x, box_.length.y, box_.length.z});
   // Keep 2 x (largest bounding radius) within a quarter box.
   skin_rel_ = std::min(
-      skin_rel_, std::max(0.005, (0.2 * l_min0 - class_rho_[0] * s_want) / (2.0 * class_rho_[0] * std::max(s0_, 0.2))));
+      skin_rel_, std::max(0.005, (0.2 * l_min0 - class_rho_[0] * s_want) / (2.0 * class_rho_[0] * skin_scale(s0_))));
   // The list-length limit. Class k's bounding radius is rho_k (s + 2 skin_rel s_ref) = rho_k beta,
   // so in an ideal gas a sphere of class k has sum_m n_m (4/3) pi (rho_k + rho_m)^3 beta^3
   // neighbours (n_m: number density of class m); the mean over the spheres is C beta^3, and
@@ -291,9 +291,9 @@ void LsSimulation::build_grids() {
       }
     c *= 4.0 / 3.0 * std::numbers::pi / (static_cast<double>(body_.size()) * volume);
     const double beta_max = std::cbrt(params_.neighbor_list_limit / c);
-    skin_rel_ = std::min(skin_rel_, std::max(0.005, (beta_max - s_want) / (2.0 * std::max(s0_, 0.2))));
+    skin_rel_ = std::min(skin_rel_, std::max(0.005, (beta_max - s_want) / (2.0 * skin_scale(s0_))));
   }
-  for (int k = 0; k < nclass_; ++k) skin_[k] = skin_rel_ * 2.0 * class_rho_[k] * std::max(s0_, 0.2);
+  for (int k = 0; k < nclass_; ++k) skin_[k] = skin_rel_ * 2.0 * class_rho_[k] * skin_scale(s0_);
   double s_cap = inf;
   for (int k = 0; k < nclass_; ++k) {
     Grid& gr = grid_[k];
