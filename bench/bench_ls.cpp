@@ -67,11 +67,13 @@ Run run_case(long n, double rate, double target, double ratio, double vol_ratio,
   const bool trace = std::getenv("BENCH_LS_TRACE") != nullptr;
   r.status = sim.run([&](const generate::LsStatus& st) {
     if (trace)
-      fmt::print("trace block={} phi={:.7f} skin={:.4f} neighbors={:.2f} bytes_per_particle={:.1f} "
-                 "peak_bytes_per_particle={:.1f} reduced_pressure={:.6g} collisions={} transfers={} time={:.6g}\n",
-                 st.blocks, st.volume_fraction, sim.neighbor_skin(), sim.mean_neighbors(),
-                 static_cast<double>(sim.memory_bytes()) / static_cast<double>(n),
-                 static_cast<double>(sim.peak_memory_bytes()) / static_cast<double>(n), st.reduced_pressure, st.collisions, st.transfers, st.time);
+      fmt::print(
+          "trace block={} phi={:.7f} skin={:.4f} neighbors={:.2f} bytes_per_particle={:.1f} "
+          "peak_bytes_per_particle={:.1f} reduced_pressure={:.6g} collisions={} transfers={} time={:.6g}\n",
+          st.blocks, st.volume_fraction, sim.neighbor_skin(), sim.mean_neighbors(),
+          static_cast<double>(sim.memory_bytes()) / static_cast<double>(n),
+          static_cast<double>(sim.peak_memory_bytes()) / static_cast<double>(n), st.reduced_pressure, st.collisions,
+          st.transfers, st.time);
     if (st.blocks - last_print >= 10) {
       last_print = st.blocks;
       fmt::print(stderr, "  block {} phi {:.6f} p {:.4g} collisions {} t {:.1f} s\n", st.blocks, st.volume_fraction,

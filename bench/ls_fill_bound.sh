@@ -12,13 +12,9 @@
 #        > docs/data/ls_fill_bound_DATE.txt
 #        bench/ls_fill_bound.sh --summary FILE...   the summary of earlier outputs' runs
 set -euo pipefail
+. "$(dirname "$0")/summary_awk.sh"
 summarize() {  # the runs' lines on stdin
-  awk '
-  function kv(line, key) {
-    if (match(line, "(^| )" key "=[^ ]+")) { s = substr(line, RSTART, RLENGTH); sub(/^ /, "", s); return substr(s, length(key) + 2) }
-    return ""
-  }
-  function sd(s, s2, m,   v) { v = (m > 1) ? (s2 - s * s / m) / (m - 1) : 0; return v > 0 ? sqrt(v) : 0 }
+  awk "$SUMMARY_AWK"'
   {
     c = kv($0, "case"); b = kv($0, "build"); k = c " build=" b
     n[k]++
@@ -61,11 +57,7 @@ summarize() {  # the runs' lines on stdin
 # midpoints) at the NEW block's midpoint; the relative differences are averaged per seed, then
 # over the seeds (mean and standard error).
 equal_phi() {  # trace lines on stdin
-  awk '
-  function kv(line, key) {
-    if (match(line, "(^| )" key "=[^ ]+")) { s = substr(line, RSTART, RLENGTH); sub(/^ /, "", s); return substr(s, length(key) + 2) }
-    return ""
-  }
+  awk "$SUMMARY_AWK"'
   {
     k = kv($0, "case") SUBSEP kv($0, "seed") SUBSEP kv($0, "build")
     phi = kv($0, "phi")

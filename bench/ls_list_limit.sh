@@ -8,14 +8,9 @@
 #        > docs/data/ls_list_limit_DATE.txt
 #        bench/ls_list_limit.sh --summary FILE...   the summaries of the runs of earlier outputs together
 set -euo pipefail
+. "$(dirname "$0")/summary_awk.sh"
 summarize() {  # the runs' lines on stdin
-  awk '
-
-  # KEY=value at the start of the line or after a space (so that "phi" does not read "phi_exact").
-  function kv(line, key) {
-    if (match(line, "(^| )" key "=[^ ]+")) { s = substr(line, RSTART, RLENGTH); sub(/^ /, "", s); return substr(s, length(key) + 2) }
-    return ""
-  }
+  awk "$SUMMARY_AWK"'
   {
     k = kv($0, "case") " list_limit=" kv($0, "list_limit")
     n[k]++; cpu[k] += kv($0, "ls_cpu_s"); cpu2[k] += kv($0, "ls_cpu_s")^2
@@ -25,7 +20,6 @@ summarize() {  # the runs' lines on stdin
     at[kv($0, "case") SUBSEP kv($0, "seed") SUBSEP kv($0, "list_limit")] = kv($0, "phi_exact")
     seeds[kv($0, "case") SUBSEP kv($0, "seed")] = 1
   }
-  function sd(s, s2, m,   v) { v = (m > 1) ? (s2 - s * s / m) / (m - 1) : 0; return v > 0 ? sqrt(v) : 0 }
   END {
     for (k in n)
       printf("summary case=%s runs=%d cpu_s=%.2f+-%.2f peak_bytes_per_particle=%.1f+-%.1f phi=%.6f+-%.6f transfers=%.4g\n",
