@@ -10,6 +10,7 @@
 #include <cstdlib>
 #include <string>
 
+#include "memory_report.hpp"
 #include "packlab/core/thread_wait.hpp"
 #include "packlab/generate/vem.hpp"
 
@@ -63,6 +64,7 @@ int main(int argc, char** argv) {
              vem.engine().listed_pairs(), vem.engine().particle_resorts());
   fmt::print("total: {:.2f} s, {:.4g} particle-steps/s\n", blowup_s + expansion_s,
              particles * static_cast<double>(vem.total_steps()) / (blowup_s + expansion_s));
+  bench::print_engine_memory(vem.engine());  // at the end: the dense packing's listed pairs
   for (std::size_t k = 0; k < vem.curve().size(); k += 10) {
     const auto& r = vem.curve()[k];
     fmt::print("  q {:.3f} cn {:.3f} phi_T {:.4f} E_s {:.3e} E_k {:.3e} steps {} ratio {:.2e}\n", r.q, r.cn,

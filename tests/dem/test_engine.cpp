@@ -409,7 +409,7 @@ TEST(Engine, MemoryReportCountsParticlesPairsAndBonds) {
   Packing p = test::open_cube(8);
   for (int k = 0; k < 64; ++k) p.add({1.0 + (k % 4) * 1.9, 1.0 + (k / 4 % 4) * 1.9, 1.0 + (k / 16) * 1.9}, 1.0);
   EngineConfig config;
-  config.types = {Material{100.0, 10.0, 0.0, 1000.0, 0.0}};
+  config.types = {Material{100.0, 10.0, 0.5, 1000.0, 0.0}};  // friction: the pairs keep a shear spring
   config.threads = 1;
   const Engine bare(p, config);
   const EngineMemory m = bare.memory();
@@ -421,6 +421,10 @@ TEST(Engine, MemoryReportCountsParticlesPairsAndBonds) {
   EXPECT_GE(m.contact_history, bare.listed_pairs() * sizeof(Vec3));    // linear law: a shear force
   EXPECT_EQ(m.bonds, 0u);
   EXPECT_EQ(m.total(), m.particles + m.neighbor_list + m.listed_pairs + m.contact_history + m.bonds + m.threads);
+  // Without friction (and bonds) the contacts are central and keep no history at all.
+  EngineConfig frictionless = config;
+  frictionless.types[0].friction = 0.0;
+  EXPECT_EQ(Engine(p, frictionless).memory().contact_history, 0u);
   for (int k = 0; k + 1 < 64; k += 2) p.bonds.add(k, k + 1, {0, 0, 0}, 0, 1.9);
   config.bond_materials = BondMaterialList<ContactBond>{{800.0, 80.0, 1e9, 1e9}};
   const EngineMemory bonded = Engine(p, config).memory();

@@ -64,6 +64,29 @@ TEST(EngineState, CheckpointWithInputDensitiesContinuesBitwiseIdentically) {
   EXPECT_NE(message.find("per-particle densities"), std::string::npos) << message;
 }
 
+// Without friction and bonds the contacts take their central form and the listed pairs keep no
+// shear history (issue #14: 24 bytes per listed pair): none is held, carried over, re-sorted or
+// checkpointed, and a checkpoint still continues bit for bit, through rebuilds and sorts.
+TEST(EngineState, FrictionlessRunKeepsNoPairHistoryAndItsCheckpointContinuesBitwise) {
+  EngineConfig frictionless = two_type_config();
+  frictionless.types[0].friction = 0.0;
+  frictionless.resort_particles = true;
+  Packing p = two_types(600, 8);
+  Random rng(9);
+  p.velocity.assign(p.size(), Vec3{});
+  for (auto& v : p.velocity) v = 0.5 * rng.unit_vector();  // a gas: rebuilds and sorts
+  Engine frictional(p, two_type_config());
+  EXPECT_GT(frictional.memory().contact_history, 0u);
+  Engine engine(p, frictionless);
+  EXPECT_EQ(engine.memory().contact_history, 0u);
+  const long builds = engine.neighbor_builds();
+  engine.run(400);
+  EXPECT_GT(engine.neighbor_builds(), builds);
+  EXPECT_GT(engine.particle_resorts(), 0);
+  EXPECT_EQ(engine.memory().contact_history, 0u);
+  test::expect_checkpoint_continues_bitwise(p, frictionless, 200);
+}
+
 TEST(EngineState, DamagedOrForeignCheckpointIsAnInputError) {
   const Packing p = two_types(100, 5);
   Engine e(p, two_type_config());

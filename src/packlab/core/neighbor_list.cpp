@@ -83,7 +83,7 @@ void NeighborList::build(const Box& box, std::vector<Vec3>& position, const std:
   // history map below must look for each pair under its code before the wrap.
   std::vector<std::uint8_t> wrap_code;
   bool wrapped_any = false;
-  const bool map_history = first_.size() == static_cast<std::size_t>(n) + 1;
+  const bool map_history = map_histories_ && first_.size() == static_cast<std::size_t>(n) + 1;
   if (wraps) wraps->resize(position.size(), {0, 0, 0});
   if (map_history) wrap_code.assign(position.size(), static_cast<std::uint8_t>(unshifted_image));
   for (std::size_t k = 0; k < position.size(); ++k) {
@@ -294,7 +294,10 @@ void NeighborList::build(const Box& box, std::vector<Vec3>& position, const std:
   // image c into the same pair seen through image c + s_j - s_i: the old list holds it under
   // c_new - s_j + s_i. For one partner that is the same shift of every code, so the old codes
   // looked for stay in ascending order and the merge below still walks forward.
-  previous_index_.assign(partner_.size(), -1);
+  if (map_histories_)
+    previous_index_.assign(partner_.size(), -1);
+  else
+    release_memory(previous_index_);
   if (map_history) {
 #pragma omp parallel for num_threads(threads) schedule(static)
     for (int i = 0; i < n; ++i) {

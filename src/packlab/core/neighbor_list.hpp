@@ -56,6 +56,9 @@ class NeighborList {
   // lets callers carry per-pair history (shear springs) across rebuilds. Empty after
   // release_history_map() until the next build.
   const std::vector<int>& previous_index() const { return previous_index_; }
+  // Whether build() makes the map above (default: yes). A caller that keeps no per-pair
+  // history turns it off: the map is then left empty.
+  void set_history_map(bool on) { map_histories_ = on; }
   // Frees the map above, for a caller that has carried its histories over (it would otherwise
   // be kept until the next build: 4 bytes per listed pair).
   void release_history_map();
@@ -91,6 +94,7 @@ class NeighborList {
   std::vector<int> partner_;
   std::vector<std::uint8_t> image_;
   std::vector<int> previous_index_;
+  bool map_histories_ = true;
   std::array<Vec3, 27> offsets_{};
   std::vector<Vec3> position_at_build_;
   std::vector<double> radius_at_build_;

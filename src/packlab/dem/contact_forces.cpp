@@ -58,7 +58,8 @@ ContactForces Engine::contact_forces() const {
             const auto& params = model.params(P.type[i], P.type[j]);
             const double cutoff = P.radius[i] + P.radius[j] + Law::reach(params);
             if (norm2(d) >= cutoff * cutoff) continue;
-            auto history = model.history[p];
+            // Runs that keep no pair history (pair_histories_) evaluate as from a fresh one.
+            auto history = model.history.empty() ? typename Law::History{} : model.history[p];
             const PairForce f = Law::evaluate(as_stored(pair_geometry(i, j, d, norm(d))), params, history);
             push(original_index_[i], original_index_[j], ContactForces::contact, d, f.force_on_j);
           }

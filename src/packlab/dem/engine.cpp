@@ -176,6 +176,7 @@ Engine::Engine(const Packing& packing, const EngineConfig& config) : packing_(pa
           spin_free_ = packing_.bonds.size() == 0;
           for (const auto& p : model.pair_params) spin_free_ = spin_free_ && Law::torque_free(p);
         }
+        pair_histories_ = !(has_central_form<Law> && spin_free_);
       },
       model_);
 
@@ -264,6 +265,7 @@ Engine::Engine(const Packing& packing, const EngineConfig& config) : packing_(pa
   neighbors_.set_skin(config_.skin_ratio * r_max);
   near_base_margin_ = near_margin_ = config_.near_margin_ratio * neighbors_.skin();
   neighbors_.set_reach(reach);
+  neighbors_.set_history_map(pair_histories_);
   masses_changed();
   if (config_.time_step > 0.0)
     dt_ = config_.time_step;

@@ -183,6 +183,12 @@ struct ContactModel {
 
 using ContactModels = ContactLaws::variant<ContactModel>;
 
+// A law with a central form: evaluate_central gives the normal force of a contact that can
+// exert no torque (LinearContact without friction), reading no velocity, spin or history.
+template <class Law>
+inline constexpr bool has_central_form =
+    requires(const ContactGeometry& g, const typename Law::Params& p) { Law::evaluate_central(g, p); };
+
 // The bond law's state: its materials and one history per bond.
 template <class Law>
 struct BondModel {
@@ -455,6 +461,11 @@ class Engine {
   // contacts without friction) and there are no bonds: the integration skips the spins, which
   // stay as they are (issue #14: the void expansion method's integration reads a third less).
   bool spin_free_ = false;
+  // The listed pairs keep the contact law's history (ContactModel::history). Not in spin_free_
+  // runs of a law with a central form: no pair reads or writes one there, so none is stored,
+  // carried over at a rebuild, re-sorted or checkpointed (issue #14: 24 bytes per listed pair
+  // in the void expansion method's engine; the wall contacts keep theirs).
+  bool pair_histories_ = true;
   long near_refreshes_ = 0;
   // resort_particles: the listed pairs' mean index distance after the last sort (0: not yet
   // measured), and the sorts so far.

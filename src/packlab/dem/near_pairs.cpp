@@ -90,6 +90,7 @@ void Engine::refresh_near_pairs() {
         const bool any_bonded = !pair_bonded_.empty();
         const std::uint8_t* __restrict bonded = pair_bonded_.data();
         History* __restrict history = model.history.data();
+        const bool keep_histories = pair_histories_;
         const auto* __restrict params = model.pair_params.data();
         const int type_count = model.type_count;
 #pragma omp parallel num_threads(T)
@@ -108,7 +109,7 @@ void Engine::refresh_near_pairs() {
               if (norm2(d) < cutoff * cutoff && (!any_bonded || bonded[p] == 0)) {
                 w.near_pairs.push_back(p);
                 w.near_owners.push_back(i);
-              } else {
+              } else if (keep_histories) {
                 history[p] = History{};  // not acting: the pair loop would have cleared it
               }
             }

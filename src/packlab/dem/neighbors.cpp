@@ -9,18 +9,20 @@ namespace packlab::dem {
 
 void Engine::refresh_neighbors() {
   neighbors_.build(packing_.box, particles_.position, particles_.radius, threads_, &wraps_);
-  std::visit(
-      [&](auto& model) {
-        using History = typename std::decay_t<decltype(model.law)>::History;
-        std::vector<History> remapped(neighbors_.pair_count(), History{});
-        const auto& previous = neighbors_.previous_index();
-        for (std::size_t p = 0; p < remapped.size(); ++p)
-          if (previous[p] >= 0 && static_cast<std::size_t>(previous[p]) < model.history.size())
-            remapped[p] = model.history[previous[p]];
-        model.history.swap(remapped);
-      },
-      model_);
-  neighbors_.release_history_map();
+  if (pair_histories_) {  // else the list keeps no map and the pairs no history
+    std::visit(
+        [&](auto& model) {
+          using History = typename std::decay_t<decltype(model.law)>::History;
+          std::vector<History> remapped(neighbors_.pair_count(), History{});
+          const auto& previous = neighbors_.previous_index();
+          for (std::size_t p = 0; p < remapped.size(); ++p)
+            if (previous[p] >= 0 && static_cast<std::size_t>(previous[p]) < model.history.size())
+              remapped[p] = model.history[previous[p]];
+          model.history.swap(remapped);
+        },
+        model_);
+    neighbors_.release_history_map();
+  }
   if (config_.resort_particles && bonds_.i.empty()) {
     // A gas loses its order as it diffuses: sort again once neighbours lie 1.5 times as far
     // apart in memory as after the last sort (measured on the list just built).

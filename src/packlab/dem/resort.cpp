@@ -71,12 +71,14 @@ void Engine::resort() {
       [&](auto& model) {
         using Law = std::decay_t<decltype(model.law)>;
         using History = typename Law::History;
-        std::vector<History> history(source.size());
-        for (std::size_t p = 0; p < source.size(); ++p) {
-          const History& h = model.history[static_cast<std::size_t>(source[p])];
-          history[p] = reversed[p] ? reversed_history<Law>(h) : h;
+        if (pair_histories_) {
+          std::vector<History> history(source.size());
+          for (std::size_t p = 0; p < source.size(); ++p) {
+            const History& h = model.history[static_cast<std::size_t>(source[p])];
+            history[p] = reversed[p] ? reversed_history<Law>(h) : h;
+          }
+          model.history.swap(history);
         }
-        model.history.swap(history);
         // Wall contacts: one history per particle and wall.
         const std::size_t walls = walls_.size();
         if (walls > 0) {

@@ -431,10 +431,8 @@ void Engine::pair_forces(ContactModel<Law>& model, Totals& totals) {
   double* __restrict measure_force = Measure ? measure_force_.data() : nullptr;
   constexpr int capacity = PairBlock<Law>::capacity;
   // No torque can act (spin_free_) and the law has a central form: evaluate only that.
-  constexpr bool has_central = requires(const ContactGeometry& g, const typename Law::Params& p) {
-    Law::evaluate_central(g, p);
-  };
-  const bool central = has_central && spin_free_;
+  constexpr bool has_central = has_central_form<Law>;
+  const bool central = has_central && spin_free_;  // then !pair_histories_: no history is kept
   if (!walls_.empty()) wall_chunk_force_.resize(static_cast<std::size_t>(chunk_count(n)) * walls_.size());
 
   // What a pair or bond gives its owner and its other particle.
