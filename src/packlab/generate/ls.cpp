@@ -22,6 +22,13 @@ namespace {
 
 constexpr double inf = std::numeric_limits<double>::infinity();
 
+// The skin's adaptation at a block's end: it grows by skin_grow while transfers outnumber half
+// the collisions and the lists hold fewer than skin_grow_below_fill entries per sphere (transfers
+// cost a cell search), and shrinks by skin_shrink when transfers are rare (under a tenth of the
+// collisions) or the lists hold more than skin_shrink_above_fill (each prediction reads them).
+constexpr double skin_grow_below_fill = 12.0, skin_shrink_above_fill = 20.0;
+constexpr double skin_grow = 1.5, skin_shrink = 0.8;
+
 int floor_div(int a, int n) { return a >= 0 ? a / n : -((-a + n - 1) / n); }
 
 // Collision time (eq. 8) if it is below `horizon`, else +inf. f(t) = A t^2 + 2 B t + C =
@@ -612,10 +619,10 @@ bool LsSimulation::run_block() {
     const double t = static_cast<double>(status_.transfers - transfers0);
     const double fill = mean_neighbors();
     const double skin_block = skin_rel_;
-    if (t > 0.5 * c && fill < 12.0)
-      skin_rel_ = std::min(2.0, skin_rel_ * 1.5);
-    else if (t < 0.1 * c || fill > 20.0)
-      skin_rel_ = std::max(0.005, skin_rel_ * 0.8);
+    if (t > 0.5 * c && fill < skin_grow_below_fill)
+      skin_rel_ = std::min(max_skin_rel, skin_rel_ * skin_grow);
+    else if (t < 0.1 * c || fill > skin_shrink_above_fill)
+      skin_rel_ = std::max(min_skin_rel, skin_rel_ * skin_shrink);
     // The list-length limit, from the lists the block ended with. The cap at a block's start
     // (build_grids) counts an ideal gas of bounding spheres, and the dense fluid holds more (its
     // contact shell): 13.5 per sphere at the end of the bimodal growth to c = 0.6 under a limit of
@@ -626,7 +633,7 @@ bool LsSimulation::run_block() {
       const double s_end = s_at(now);
       const double beta = s_end + 2.0 * skin_block * skin_scale(s0_);
       const double beta_limit = beta * std::cbrt(params_.neighbor_list_limit / fill);
-      skin_rel_ = std::min(skin_rel_, std::max(0.005, (beta_limit - s_end) / (2.0 * skin_scale(s_end))));
+      skin_rel_ = std::min(skin_rel_, std::max(min_skin_rel, (beta_limit - s_end) / (2.0 * skin_scale(s_end))));
     }
   }
   status_.time += now;

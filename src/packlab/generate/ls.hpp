@@ -275,6 +275,8 @@ class LsSimulation {
   bool target_in_block_ = false;
   double virial_ = 0.0;
   double skin_rel_ = 0.1;
+  // The bounds of skin_rel_ wherever it is adapted or capped (run_block's end, build_grids).
+  static constexpr double min_skin_rel = 0.005, max_skin_rel = 2.0;
   LsStatus status_;
   bool stopped_ = false;  // a stop criterion other than max_blocks was met
   double overlap_correction_ = 0.0;

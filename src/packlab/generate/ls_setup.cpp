@@ -275,7 +275,7 @@ void LsSimulation::build_grids() {
   const double l_min0 = std::min({box_.length.x, box_.length.y, box_.length.z});
   // Keep 2 x (largest bounding radius) within a quarter box.
   skin_rel_ = std::min(
-      skin_rel_, std::max(0.005, (0.2 * l_min0 - class_rho_[0] * s_want) / (2.0 * class_rho_[0] * skin_scale(s0_))));
+      skin_rel_, std::max(min_skin_rel, (0.2 * l_min0 - class_rho_[0] * s_want) / (2.0 * class_rho_[0] * skin_scale(s0_))));
   // The list-length limit. Class k's bounding radius is rho_k (s + 2 skin_rel s_ref) = rho_k beta,
   // so in an ideal gas a sphere of class k has sum_m n_m (4/3) pi (rho_k + rho_m)^3 beta^3
   // neighbours (n_m: number density of class m); the mean over the spheres is C beta^3, and
@@ -291,7 +291,7 @@ void LsSimulation::build_grids() {
       }
     c *= 4.0 / 3.0 * std::numbers::pi / (static_cast<double>(body_.size()) * volume);
     const double beta_max = std::cbrt(params_.neighbor_list_limit / c);
-    skin_rel_ = std::min(skin_rel_, std::max(0.005, (beta_max - s_want) / (2.0 * skin_scale(s0_))));
+    skin_rel_ = std::min(skin_rel_, std::max(min_skin_rel, (beta_max - s_want) / (2.0 * skin_scale(s0_))));
   }
   for (int k = 0; k < nclass_; ++k) skin_[k] = skin_rel_ * 2.0 * class_rho_[k] * skin_scale(s0_);
   double s_cap = inf;
