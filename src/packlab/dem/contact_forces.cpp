@@ -59,7 +59,7 @@ ContactForces Engine::contact_forces() const {
             const double cutoff = P.radius[i] + P.radius[j] + Law::reach(params);
             if (norm2(d) >= cutoff * cutoff) continue;
             // Runs that keep no pair history (pair_histories_) evaluate as from a fresh one.
-            auto history = model.history.empty() ? typename Law::History{} : model.history[p];
+            auto history = pair_histories_ ? model.history[p] : typename Law::History{};
             const PairForce f = Law::evaluate(as_stored(pair_geometry(i, j, d, norm(d))), params, history);
             push(original_index_[i], original_index_[j], ContactForces::contact, d, f.force_on_j);
           }

@@ -430,9 +430,10 @@ void Engine::pair_forces(ContactModel<Law>& model, Totals& totals) {
   double* __restrict measure_energy = Measure ? measure_energy_.data() : nullptr;
   double* __restrict measure_force = Measure ? measure_force_.data() : nullptr;
   constexpr int capacity = PairBlock<Law>::capacity;
-  // No torque can act (spin_free_) and the law has a central form: evaluate only that.
+  // No torque can act (spin_free_) and the law has a central form: evaluate only that. The
+  // engine decided this once (engine.cpp): it is exactly where it keeps no pair histories.
   constexpr bool has_central = has_central_form<Law>;
-  const bool central = has_central && spin_free_;  // then !pair_histories_: no history is kept
+  const bool central = has_central && !pair_histories_;
   if (!walls_.empty()) wall_chunk_force_.resize(static_cast<std::size_t>(chunk_count(n)) * walls_.size());
 
   // What a pair or bond gives its owner and its other particle.
